@@ -1,0 +1,81 @@
+// The interface between the solver and whatever computes form factors (DESIGN.md
+// "Data flow"): the solver asks "form factors from this shooter", a provider answers with
+// links. The CPU reference providers and the GPU hemicube provider stand behind it alike.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hemirad/patch.h"
+#include "hemirad/scene.h"
+
+namespace hemirad {
+
+/// The patch that shoots: a node of some polygon's quadtree.
+struct Shooter {
+    PatchAddress address;
+    PatchGeometry geometry;   ///< corners, centre, area of the shooting patch
+    dvec3 normal{0.0};        ///< the polygon's unit normal
+    double unshot_power = 0;  ///< sum over RGB of dB*area [W]; providers may adapt to it
+    double power_fraction = 1; ///< unshot_power / total unshot power now (0..1]
+};
+
+/// One receiving node and the form factor from it to the shooter, F(j -> S): the fraction
+/// of the power leaving receiver j that arrives at the shooter. The solver uses `ff`.
+struct Link {
+    PatchAddress receiver;
+    float ff = 0;          ///< the value the solver uses, F(j->S)
+    float ff_analytic = 0; ///< analytic dA_j -> S at the receiver centre (unoccluded)
+    float ff_pixel = 0;    ///< hemicube pixel sum converted to F(j->S) (0 where not computed)
+    bool partial = false;  ///< estimated partially occluded
+};
+
+/// Per-polygon quadtree depths: the deepest level each polygon may be linked at.
+struct Discretisation {
+    std::vector<std::uint8_t> depth; ///< per polygon, 0..kMaxDepth
+};
+
+class FormFactorProvider {
+public:
+    virtual ~FormFactorProvider() = default;
+    virtual std::string name() const = 0;
+    /// Appends to `links` one entry per receiving node visible from the shooter (links is
+    /// cleared first). Receivers on the shooter's own polygon are never returned.
+    virtual void shoot(const Shooter& shooter, std::vector<Link>& links) = 0;
+    /// When true, receivers are linked at their leaves (depth of the Discretisation);
+    /// used by the matrix solver and by tests. Default: adaptive linking.
+    virtual void set_link_at_leaves(bool leaves) { link_at_leaves_ = leaves; }
+    /// Timings of the last shoot() in seconds, by phase name (render, readback, reduce, ...).
+    struct Timing { const char* phase; double seconds; };
+    virtual std::vector<Timing> last_timings() const { return {}; }
+
+protected:
+    bool link_at_leaves_ = false;
+};
+
+/// Options shared by the CPU providers.
+struct CpuProviderOptions {
+    /// Adaptive linking: a receiver node is refined while its size / distance to the shooter
+    /// exceeds this (about one hemicube pixel at resolution 256: 2/256). Range (0, 1].
+    double link_angle = 2.0 / 256.0;
+    int visibility_samples = 4;   ///< reference: shooter points per side for ray visibility (1..16)
+    int gauss_order = 4;          ///< pdm: Gauss-Legendre nodes per side on each patch (1..16)
+    int sr_rays = 1024;           ///< sr: cosine-distributed rays per shooter sample point
+    int sr_points = 16;           ///< sr: random sample points on the shooter
+    std::uint64_t seed = 1;       ///< sr: random seed (reproducible)
+};
+
+/// CPU providers: "reference" (analytic point-to-polygon + ray-cast visibility),
+/// "pdm" (paper 000's parametric differential method), "sr" (paper 000's shooting rays).
+/// Throws InputError for an unknown name.
+std::unique_ptr<FormFactorProvider> make_cpu_provider(const std::string& name, const Scene& scene,
+                                                      const Discretisation& disc,
+                                                      const CpuProviderOptions& options = {});
+
+/// Analytic form factor from a differential area at `p` with unit normal `n` to the
+/// polygon `corners[0..count)` (Lambert/Nusselt contour integral), the polygon first
+/// clipped to the half-space n.(x-p) >= 0. Double precision. Returns a value in [0,1].
+double point_to_polygon_ff(const dvec3& p, const dvec3& n, const dvec3* corners, int count);
+
+} // namespace hemirad

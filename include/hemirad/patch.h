@@ -1,0 +1,70 @@
+// Patch addressing and patch geometry within one polygon's quadtree (paper 002 §2, §4.3).
+//
+// Level d of a polygon holds n*n patches, n = 2^d, indexed index = y*n + x on a grid of
+// cells over the polygon's parameter domain (u along v0->v1, v along v0->v3 for quads,
+// v0->v2 for triangles). This is the addressing the GPU patch-ID texture encodes.
+//  - Quad: bilinear map P(u,v); patch (x,y) covers [x/n,(x+1)/n] x [y/n,(y+1)/n].
+//  - Triangle: P(u,v) = v0 + u(v1-v0) + v(v2-v0), u,v >= 0, u+v <= 1. Cell (i,j) with
+//    i+j <= n-1 holds the "upright" sub-triangle (lower-left half of the cell) at index
+//    j*n+i; the "inverted" sub-triangle in the upper-right half of cell (i,j), i+j <= n-2,
+//    is stored at the mirrored cell (n-1-i, n-1-j), whose i+j >= n. This is exactly
+//    midpoint subdivision: every patch has four children at the next level.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "hemirad/scene.h"
+
+namespace hemirad {
+
+constexpr int kMaxDepth = 11; ///< deepest quadtree level (4^11 = 4.2M leaves per polygon)
+
+struct PatchAddress {
+    std::uint32_t polygon = 0;
+    std::uint32_t level = 0;
+    std::uint32_t index = 0; ///< within the level, y*n + x (see above)
+    bool operator==(const PatchAddress& o) const {
+        return polygon == o.polygon && level == o.level && index == o.index;
+    }
+};
+
+/// Number of nodes in levels 0..level-1 of one quadtree: (4^level - 1)/3.
+constexpr std::uint64_t level_offset(int level) {
+    return ((std::uint64_t(1) << (2 * level)) - 1) / 3;
+}
+/// Nodes in a quadtree of depth `depth` (levels 0..depth).
+constexpr std::uint64_t tree_size(int depth) { return level_offset(depth + 1); }
+
+/// The geometry of one patch (a sub-quad or sub-triangle of a polygon).
+struct PatchGeometry {
+    std::array<dvec3, 4> corners{}; ///< counter-clockwise like the polygon
+    int count = 0;                  ///< 3 or 4
+    dvec3 centre{0.0};              ///< parametric centre (quad) or centroid (triangle)
+    double area = 0.0;              ///< exact area of the patch [unit^2]
+};
+
+/// Parametric coordinates of a patch's corners and centre (see header comment).
+PatchGeometry patch_geometry(const Polygon& polygon, std::uint32_t level, std::uint32_t index);
+
+/// Maps parameter (u,v) to a point on the polygon (bilinear for quads, affine for triangles).
+dvec3 polygon_point(const Polygon& polygon, double u, double v);
+
+/// Index of the patch of `level` that contains parameter point (u,v) (clamped into range).
+std::uint32_t patch_at(const Polygon& polygon, std::uint32_t level, double u, double v);
+
+/// Children of a patch at level+1 (always four), and its parent at level-1.
+std::array<std::uint32_t, 4> patch_children(bool triangle, std::uint32_t level,
+                                            std::uint32_t index);
+std::uint32_t patch_parent(bool triangle, std::uint32_t level, std::uint32_t index);
+
+/// Patches of the same level sharing an edge with this one (up to 4; unused = UINT32_MAX).
+std::array<std::uint32_t, 4> patch_neighbours(bool triangle, std::uint32_t level,
+                                              std::uint32_t index);
+
+/// Is `index` a valid patch of `level` (for triangles, every cell index is valid).
+inline bool patch_valid(std::uint32_t level, std::uint32_t index) {
+    return index < (std::uint32_t(1) << (2 * level));
+}
+
+} // namespace hemirad

@@ -1,0 +1,87 @@
+// Scene model: planar convex polygons (triangles and quads) with diffuse materials.
+// Conventions (DESIGN.md "Conventions for results"): lengths in scene units; Ke is emitted
+// radiance per channel, emitted radiosity (exitance) is pi*Ke; Kd is reflectance rho in [0,1).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace hemirad {
+
+using dvec3 = glm::dvec3;
+
+struct Material {
+    std::string name;
+    dvec3 rho{0.0};        ///< diffuse reflectance per RGB channel, each in [0, 1)
+    dvec3 Ke{0.0};         ///< emitted radiance per channel [W sr^-1 unit^-2]; exitance = pi*Ke
+    dvec3 exitance() const; ///< emitted radiosity Be = pi*Ke [W unit^-2]
+};
+
+/// A planar convex polygon: 3 or 4 corners, counter-clockwise seen from the front (normal side).
+struct Polygon {
+    std::array<dvec3, 4> v{};  ///< corners; v[3] unused for triangles
+    int count = 0;             ///< 3 or 4
+    dvec3 normal{0.0};         ///< unit normal, front side
+    double area = 0.0;         ///< [unit^2]
+    std::uint32_t material = 0; ///< index into Scene::materials
+    std::uint32_t group = 0;    ///< index into Scene::groups
+    bool is_triangle() const { return count == 3; }
+    dvec3 centroid() const;
+};
+
+struct Camera {
+    std::string name = "default";
+    dvec3 eye{0.0, 0.0, 1.0};
+    dvec3 target{0.0};
+    dvec3 up{0.0, 1.0, 0.0};
+    double fov_y_deg = 40.0; ///< vertical field of view [degrees]
+};
+
+struct Bounds {
+    dvec3 lo{1e300}, hi{-1e300};
+    void extend(const dvec3& p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+    double diagonal() const { return glm::length(hi - lo); }
+};
+
+struct Scene {
+    std::string source;                ///< file path or "builtin:NAME"
+    std::vector<Polygon> polygons;
+    std::vector<Material> materials;
+    std::vector<std::string> groups;   ///< surface-group names (OBJ g/o, else material name)
+    std::vector<Camera> cameras;       ///< cameras[0] is the default view
+    std::vector<std::string> warnings; ///< things the loader fixed or dropped, for reports
+
+    const Material& material_of(const Polygon& p) const { return materials[p.material]; }
+    dvec3 emitted_power() const;       ///< sum of pi*Ke*area [W]
+    double total_area() const;
+    double max_reflectance() const;    ///< max over materials in use and channels
+    Bounds bounds() const;
+    std::size_t triangle_count() const;
+    std::size_t quad_count() const;
+    /// Index of the group named `name`, or -1.
+    int find_group(const std::string& name) const;
+    /// FNV-1a hash of the geometry and materials, for checking saved solutions.
+    std::uint64_t content_hash() const;
+};
+
+/// Adds a polygon after validating it: non-finite corners throw InputError; a degenerate
+/// polygon (zero area, repeated corners) returns false and is not added; a non-planar or
+/// concave quad is split into two triangles (returns true, and `split` is set).
+/// `where` names the origin for messages ("file:line").
+struct AddResult {
+    int added = 0;      ///< polygons added (0, 1 or 2)
+    bool split = false; ///< a quad was split into triangles
+    bool degenerate = false;
+};
+AddResult add_polygon(Scene& scene, const std::vector<dvec3>& corners, std::uint32_t material,
+                      std::uint32_t group, double planarity_tolerance = 1e-6);
+
+/// Checks a finished scene: at least one polygon (else InputError naming `origin`); adds a
+/// warning when nothing emits. Called by every loader.
+void finish_scene(Scene& scene, const std::string& origin);
+
+} // namespace hemirad
