@@ -1,6 +1,7 @@
 // Scene model: polygon validation, derived quantities, content hash.
 #include "hemirad/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numbers>
