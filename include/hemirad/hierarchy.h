@@ -1,0 +1,92 @@
+// The patch hierarchy: a quadtree of patches per polygon (paper 002 §4.1), stored level by
+// level in one flat array. Per node and RGB channel it keeps the irradiance H received so
+// far, the unshot radiosity dB and the unpushed irradiance dI; the radiosity is derived,
+// B = Be + rho*H (storing H rather than B keeps the irradiance E that reports need, also for
+// a black channel). Per polygon, the total unshot power is kept up to date as light arrives.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "hemirad/form_factors.h"
+#include "hemirad/patch.h"
+#include "hemirad/scene.h"
+
+namespace hemirad {
+
+struct HierarchyOptions {
+    /// Target leaf patch size (longest edge) in scene units; 0 = automatic (the scene's
+    /// bounding-box diagonal / 64). Each polygon is subdivided until its patches are no larger.
+    double patch_size = 0;
+    int max_depth = 6; ///< cap on quadtree depth per polygon (0..kMaxDepth)
+};
+
+/// Depth of each polygon's quadtree for these options. Deterministic; shared by the solver
+/// and the form-factor providers.
+Discretisation discretise(const Scene& scene, const HierarchyOptions& options);
+
+class Hierarchy {
+public:
+    /// Per-node state, 40 bytes: float is enough for one shot's contribution, and totals that
+    /// must be exact (energy balance) are kept in double by the solver.
+    struct Node {
+        glm::vec3 H{0.f};  ///< irradiance received and pushed [W unit^-2]
+        glm::vec3 dB{0.f}; ///< unshot radiosity [W unit^-2]
+        glm::vec3 dI{0.f}; ///< irradiance received here, not yet pushed to the leaves
+        float area = 0.f;  ///< [unit^2]
+    };
+
+    Hierarchy(const Scene& scene, const Discretisation& disc);
+
+    const Scene& scene() const { return *scene_; }
+    const Discretisation& discretisation() const { return disc_; }
+    int depth(std::uint32_t polygon) const { return disc_.depth[polygon]; }
+    std::uint64_t node_count() const { return nodes_.size(); }
+    std::uint64_t leaf_count() const { return leaves_; }
+
+    std::uint64_t node_id(const PatchAddress& a) const {
+        return base_[a.polygon] + level_offset(int(a.level)) + a.index;
+    }
+    Node& node(const PatchAddress& a) { return nodes_[node_id(a)]; }
+    const Node& node(const PatchAddress& a) const { return nodes_[node_id(a)]; }
+
+    /// Light arriving at a node: dI += irradiance (RGB); the polygon's unshot power grows by
+    /// rho*irradiance*area. The polygon then needs a push-pull before it shoots.
+    void receive(const PatchAddress& a, const dvec3& irradiance);
+    /// Pushes dI down to the leaves (into H and dB) and pulls area-weighted averages up.
+    /// Recomputes the polygon's unshot power exactly from its root afterwards.
+    void push_pull(std::uint32_t polygon);
+    void push_pull_all();
+    bool needs_push_pull(std::uint32_t polygon) const { return dirty_[polygon] != 0; }
+
+    /// Sets the unshot radiosity of the subtree under `a` to zero (it has been shot) and
+    /// updates its ancestors and the polygon's unshot power. Requires a pushed polygon.
+    void clear_unshot(const PatchAddress& a);
+
+    /// Unshot power of a polygon, RGB [W] (includes light received but not yet pushed).
+    const dvec3& unshot_power(std::uint32_t polygon) const { return unshot_[polygon]; }
+    dvec3 total_unshot_power() const;
+
+    /// Radiosity B = Be + rho*H of a node (valid for pushed polygons) [W unit^-2].
+    dvec3 radiosity(const PatchAddress& a) const;
+    /// Irradiance H of a node, including what is still unpushed above and at it.
+    dvec3 irradiance(const PatchAddress& a) const;
+
+    /// Bytes of node storage per leaf patch (for reports).
+    double bytes_per_leaf() const;
+
+private:
+    void pull_path(const PatchAddress& a);
+
+    const Scene* scene_;
+    Discretisation disc_;
+    std::vector<std::uint64_t> base_; ///< first node of each polygon
+    std::vector<Node> nodes_;
+    std::vector<dvec3> unshot_;
+    std::vector<std::uint8_t> dirty_;
+    std::uint64_t leaves_ = 0;
+};
+
+} // namespace hemirad

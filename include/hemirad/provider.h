@@ -1,0 +1,36 @@
+// Choosing a form-factor provider by name: CPU references (reference, pdm, sr) or the GPU
+// hemicube (hemicube, analytic, hybrid).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "hemirad/form_factors.h"
+#include "hemirad/scene.h"
+
+namespace hemirad {
+
+/// Options of the GPU hemicube provider (paper 002 §2-§3).
+struct GpuProviderOptions {
+    int resolution = 0;          ///< fixed hemicube resolution (pixels per full face side); 0 = adaptive
+    int min_resolution = 64;     ///< adaptive: resolution for the weakest shooters (16..4096)
+    int max_resolution = 256;    ///< adaptive: resolution for the strongest shooters (16..4096)
+    double lod_bias = 0.0;       ///< added to the mip level chosen by GL (+1 = patches 2x larger)
+    bool builtin_acos = false;   ///< use GLSL acos instead of the 2048-entry lookup table
+    std::string backend = "auto"; ///< GL context backend: auto, egl, osmesa
+    int device = -1;             ///< EGL device index (-1 = default)
+};
+
+struct ProviderOptions {
+    CpuProviderOptions cpu;
+    GpuProviderOptions gpu;
+};
+
+/// "reference", "pdm", "sr", "hemicube", "analytic", "hybrid". Unknown → InputError.
+std::unique_ptr<FormFactorProvider> make_provider(const std::string& name, const Scene& scene,
+                                                  const Discretisation& disc,
+                                                  const ProviderOptions& options);
+const char* provider_names();
+bool is_gpu_provider(const std::string& name);
+
+} // namespace hemirad

@@ -1,0 +1,40 @@
+// Reading a solution: irradiance at points (probes) and per surface group.
+#pragma once
+
+#include <optional>
+
+#include "hemirad/hierarchy.h"
+#include "hemirad/scene.h"
+
+namespace hemirad {
+
+struct SurfacePoint {
+    std::uint32_t polygon = 0;
+    double u = 0, v = 0;   ///< parameters on the polygon (patch.h)
+    double distance = 0;   ///< from the query point to the polygon's plane [unit]
+};
+
+/// Parameters (u,v) of a point in the polygon's plane (inverse of polygon_point). Returns
+/// false if the point lies outside the polygon by more than `slack` in parameter space.
+bool polygon_uv(const Polygon& polygon, const dvec3& p, double& u, double& v,
+                double slack = 1e-6);
+
+/// The nearest polygon facing the direction `normal` (normals within 60 degrees), with the
+/// point's projection inside it, at most `max_distance` from its plane (0 = 1e-3 of the
+/// scene diagonal). Nothing if no surface is there.
+std::optional<SurfacePoint> find_surface(const Scene& scene, const dvec3& point,
+                                         const dvec3& normal, double max_distance = 0);
+
+/// Irradiance [W unit^-2] at a surface point, interpolated bilinearly between the centres of
+/// the leaf patches around it (quads; triangles take the leaf that holds the point). The
+/// hierarchy should be push-pulled (Solver::solution()).
+dvec3 irradiance_at(const Hierarchy& h, const SurfacePoint& sp);
+
+/// Leaf-level irradiance statistics of one surface group, per channel.
+struct GroupIrradiance {
+    double area = 0;
+    dvec3 E_avg{0.0}, E_min{0.0}, E_max{0.0};
+};
+GroupIrradiance group_irradiance(const Hierarchy& h, std::uint32_t group);
+
+} // namespace hemirad

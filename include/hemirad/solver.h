@@ -1,0 +1,130 @@
+// Progressive-refinement radiosity (shooting) over the patch hierarchy (paper 002 §2, §4).
+// The API is a loop (STYLE.md §4):
+//
+//     Solver s(scene, options);
+//     while (s.step()) show(s.last_shot());
+//
+// No GL types here: form factors come from a FormFactorProvider (CPU or GPU).
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hemirad/form_factors.h"
+#include "hemirad/hierarchy.h"
+#include "hemirad/provider.h"
+#include "hemirad/scene.h"
+
+namespace hemirad {
+
+struct SolverOptions {
+    std::string ff = "hybrid";     ///< form-factor method (see provider.h)
+    ProviderOptions provider;      ///< options of the form-factor providers
+    HierarchyOptions hierarchy;    ///< patch size and depth
+    double tolerance = 0.01;       ///< stop when error bound / emitted power <= this (0, 1)
+    long max_shots = 100000;       ///< stop after this many shots (>= 0)
+    double time_limit = 0;         ///< stop after this many seconds (0 = none)
+    /// Shooter descent (paper 002 §4.2): descend into the child with most unshot power while
+    /// its unshot power is at least this fraction of the scene's total unshot power... (0,1].
+    double shooter_power_fraction = 1.0 / 16.0;
+    /// ...and its size (sqrt of area) at least this [scene units]; 0 = the leaf patch size.
+    double shooter_min_size = 0;
+    bool flat = false;             ///< always shoot from leaves (no hierarchy), for comparison
+    bool row_guard = false;        ///< rescale a shot's form factors if their row sum exceeds 1
+};
+
+/// One shot, as reported after it (also one line of --log).
+struct ShotRecord {
+    long shot = 0;              ///< 1-based
+    PatchAddress shooter;
+    double shooter_power = 0;   ///< unshot power shot, sum over RGB [W]
+    std::size_t links = 0;
+    double row_sum = 0;         ///< sum_j F(j->S) A_j / A_S before any guard (1 if closed)
+    bool row_guarded = false;   ///< the guard rescaled this row
+    double t_select = 0, t_push_pull = 0, t_form_factors = 0, t_update = 0; ///< [s]
+    std::vector<FormFactorProvider::Timing> ff_phases; ///< the provider's own split
+    dvec3 unshot{0.0};          ///< total unshot power after the shot, RGB [W]
+    double unshot_fraction = 0; ///< max over channels of unshot / emitted
+    double error_bound = 0;     ///< relative bound on ||B - B*||_1 (see Solver::error_bound)
+};
+
+enum class StopReason { Running, Converged, MaxShots, TimeLimit, NothingToShoot };
+const char* to_string(StopReason r);
+
+class Solver {
+public:
+    /// Builds the hierarchy and the provider named by options.ff. Throws InputError for bad
+    /// options, RuntimeError if the provider cannot start (no GL context).
+    Solver(const Scene& scene, const SolverOptions& options);
+    /// Uses the given provider (built for discretise(scene, options.hierarchy)).
+    Solver(const Scene& scene, const SolverOptions& options,
+           std::unique_ptr<FormFactorProvider> provider);
+
+    /// Shoots once. Returns false (and shoots nothing) once a stop criterion holds.
+    bool step();
+    StopReason stop_reason() const { return stop_; }
+    bool converged() const { return stop_ == StopReason::Converged; }
+
+    const ShotRecord& last_shot() const { return last_; }
+    long shots() const { return shots_; }
+    double seconds() const; ///< wall time spent in step() so far
+
+    /// Error bound in the power (L1, area-weighted) norm, relative to the emitted power:
+    /// max over channels of U_c / ((1 - rho_max) * Phi_c) (paper 001 eq. 27 and 33).
+    double error_bound() const;
+    double unshot_fraction() const;
+    dvec3 emitted_power() const { return emitted_; }
+    dvec3 absorbed_power() const { return absorbed_; } ///< (1-rho)*received, summed [W]
+    dvec3 escaped_power() const { return escaped_; }   ///< shot power that hit nothing [W]
+    struct RowSumStats { double min = 0, mean = 0, max = 0; long guarded = 0; };
+    RowSumStats row_sums() const;
+
+    /// The solution: push-pulls every polygon so that node values are complete.
+    Hierarchy& solution();
+    const Hierarchy& hierarchy() const { return hierarchy_; }
+    FormFactorProvider& provider() { return *provider_; }
+    const SolverOptions& options() const { return options_; }
+    const Scene& scene() const { return *scene_; }
+
+    /// Ambient term (Cohen et al. 1988) for display of an unconverged solution: an estimate
+    /// of the irradiance not yet delivered, R * sum(dB*A)/sum(A), R = 1/(1 - rho_avg), RGB.
+    /// Add rho*ambient to a patch's radiosity for display only; never mixed into B.
+    dvec3 ambient_irradiance() const;
+
+    /// Resets the timer origin (for resumed runs) and restores counters (save/resume).
+    struct Counters {
+        long shots = 0;
+        dvec3 absorbed{0.0}, escaped{0.0};
+        double row_min = 0, row_max = 0, row_total = 0;
+        long row_guarded = 0;
+        std::int64_t last_polygon = -1;
+        double seconds = 0;
+    };
+    Counters counters() const;
+    void restore(const Counters& c);
+
+private:
+    void init();
+    PatchAddress select_shooter(std::uint32_t polygon);
+    void check_stop();
+
+    const Scene* scene_;
+    SolverOptions options_;
+    Hierarchy hierarchy_;
+    std::unique_ptr<FormFactorProvider> provider_;
+    std::vector<Link> links_;
+    ShotRecord last_;
+    long shots_ = 0;
+    StopReason stop_ = StopReason::Running;
+    dvec3 emitted_{0.0}, absorbed_{0.0}, escaped_{0.0};
+    double rho_max_ = 0;
+    double min_size_ = 0;
+    double row_min_ = 1e300, row_max_ = 0, row_total_ = 0;
+    long row_guarded_ = 0;
+    std::int64_t last_polygon_ = -1;
+    double seconds_ = 0;
+};
+
+} // namespace hemirad

@@ -1,0 +1,119 @@
+#include "hemirad/readout.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hemirad {
+
+namespace {
+
+// Two in-plane axes of a polygon for 2D work.
+void plane_axes(const Polygon& p, dvec3& e1, dvec3& e2) {
+    e1 = glm::normalize(p.v[1] - p.v[0]);
+    e2 = glm::cross(p.normal, e1);
+}
+
+} // namespace
+
+bool polygon_uv(const Polygon& poly, const dvec3& p, double& u, double& v, double slack) {
+    dvec3 e1, e2;
+    plane_axes(poly, e1, e2);
+    const auto to2 = [&](const dvec3& x) {
+        const dvec3 d = x - poly.v[0];
+        return glm::dvec2(glm::dot(d, e1), glm::dot(d, e2));
+    };
+    const glm::dvec2 q = to2(p);
+    if (poly.is_triangle()) {
+        const glm::dvec2 a = to2(poly.v[1]), b = to2(poly.v[2]);
+        const double det = a.x * b.y - a.y * b.x;
+        u = (q.x * b.y - q.y * b.x) / det;
+        v = (a.x * q.y - a.y * q.x) / det;
+        return u >= -slack && v >= -slack && u + v <= 1 + slack;
+    }
+    // Inverse bilinear map in 2D: P(u,v) = p0 + u*b1 + v*b2 + u*v*b3 (p0 = origin).
+    const glm::dvec2 p1 = to2(poly.v[1]), p2 = to2(poly.v[2]), p3 = to2(poly.v[3]);
+    const glm::dvec2 b1 = p1, b2 = p3, b3 = p2 - p1 - p3;
+    const auto cross2 = [](glm::dvec2 a, glm::dvec2 b) { return a.x * b.y - a.y * b.x; };
+    // Solve for v: A v^2 + B v + C = 0.
+    const double A = cross2(b2, b3);
+    const double B = cross2(b3, q) - cross2(b1, b2);
+    const double C = cross2(b1, q);
+    const double scale = std::max(std::abs(B), 1e-300);
+    if (std::abs(A) < 1e-12 * scale) {
+        v = -C / B;
+    } else {
+        const double disc = std::sqrt(std::max(0.0, B * B - 4 * A * C));
+        const double r1 = (-B + disc) / (2 * A), r2 = (-B - disc) / (2 * A);
+        v = std::abs(r1 - 0.5) < std::abs(r2 - 0.5) ? r1 : r2;
+    }
+    const glm::dvec2 denom = b1 + v * b3;
+    u = std::abs(denom.x) > std::abs(denom.y) ? (q.x - v * b2.x) / denom.x
+                                              : (q.y - v * b2.y) / denom.y;
+    return u >= -slack && v >= -slack && u <= 1 + slack && v <= 1 + slack;
+}
+
+std::optional<SurfacePoint> find_surface(const Scene& scene, const dvec3& point,
+                                         const dvec3& normal, double max_distance) {
+    const double len = glm::length(normal);
+    if (!(len > 0)) return std::nullopt;
+    const dvec3 n = normal / len;
+    if (max_distance <= 0) max_distance = 1e-3 * scene.bounds().diagonal();
+    std::optional<SurfacePoint> best;
+    for (std::uint32_t i = 0; i < scene.polygons.size(); ++i) {
+        const Polygon& p = scene.polygons[i];
+        if (glm::dot(p.normal, n) < 0.5) continue;
+        const double d = glm::dot(point - p.v[0], p.normal);
+        if (std::abs(d) > max_distance) continue;
+        if (best && std::abs(d) >= best->distance) continue;
+        double u, v;
+        if (!polygon_uv(p, point - d * p.normal, u, v, 1e-6)) continue;
+        best = SurfacePoint{i, std::clamp(u, 0.0, 1.0), std::clamp(v, 0.0, 1.0), std::abs(d)};
+    }
+    return best;
+}
+
+dvec3 irradiance_at(const Hierarchy& h, const SurfacePoint& sp) {
+    const Polygon& poly = h.scene().polygons[sp.polygon];
+    const std::uint32_t level = std::uint32_t(h.depth(sp.polygon));
+    if (poly.is_triangle())
+        return h.irradiance({sp.polygon, level, patch_at(poly, level, sp.u, sp.v)});
+    const int n = 1 << level;
+    // Leaf centres sit at (i + 0.5)/n; interpolate between the four around (u,v).
+    const double x = std::clamp(sp.u * n - 0.5, 0.0, double(n - 1));
+    const double y = std::clamp(sp.v * n - 0.5, 0.0, double(n - 1));
+    const int x0 = std::min(int(x), n - 1), y0 = std::min(int(y), n - 1);
+    const int x1 = std::min(x0 + 1, n - 1), y1 = std::min(y0 + 1, n - 1);
+    const double fx = x - x0, fy = y - y0;
+    const auto at = [&](int i, int j) {
+        return h.irradiance({sp.polygon, level, std::uint32_t(j * n + i)});
+    };
+    return (1 - fx) * (1 - fy) * at(x0, y0) + fx * (1 - fy) * at(x1, y0) +
+           (1 - fx) * fy * at(x0, y1) + fx * fy * at(x1, y1);
+}
+
+GroupIrradiance group_irradiance(const Hierarchy& h, std::uint32_t group) {
+    GroupIrradiance g;
+    g.E_min = dvec3(1e300);
+    g.E_max = dvec3(-1e300);
+    dvec3 weighted(0.0);
+    const Scene& scene = h.scene();
+    for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
+        if (scene.polygons[p].group != group) continue;
+        const std::uint32_t level = std::uint32_t(h.depth(p));
+        const std::uint32_t n = 1u << (2 * level);
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const PatchAddress a{p, level, i};
+            const dvec3 E = h.irradiance(a);
+            const double area = double(h.node(a).area);
+            g.area += area;
+            weighted += E * area;
+            g.E_min = glm::min(g.E_min, E);
+            g.E_max = glm::max(g.E_max, E);
+        }
+    }
+    if (g.area > 0) g.E_avg = weighted / g.area;
+    else g.E_min = g.E_max = dvec3(0.0);
+    return g;
+}
+
+} // namespace hemirad

@@ -1,0 +1,264 @@
+// Progressive shooting over the patch hierarchy with greedy shooter selection and lazy
+// push-pull (paper 002 §2, §4.1-4.2), error bound from paper 001 (eq. 27, 33).
+#include "hemirad/solver.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hemirad/error.h"
+
+namespace hemirad {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+double sum(const dvec3& v) { return v.x + v.y + v.z; }
+
+void validate(const SolverOptions& o) {
+    if (!(o.tolerance > 0 && o.tolerance < 1))
+        throw InputError("--tolerance " + std::to_string(o.tolerance) + " must be in (0, 1)");
+    if (o.max_shots < 0)
+        throw InputError("--max-shots " + std::to_string(o.max_shots) + " must be >= 0");
+    if (!(o.time_limit >= 0))
+        throw InputError("--time-limit " + std::to_string(o.time_limit) + " must be >= 0");
+    if (!(o.shooter_power_fraction > 0 && o.shooter_power_fraction <= 1))
+        throw InputError("--shooter-power " + std::to_string(o.shooter_power_fraction) +
+                         " must be in (0, 1]");
+    if (!(o.shooter_min_size >= 0))
+        throw InputError("--shooter-size " + std::to_string(o.shooter_min_size) +
+                         " must be >= 0");
+}
+
+} // namespace
+
+const char* to_string(StopReason r) {
+    switch (r) {
+    case StopReason::Running: return "running";
+    case StopReason::Converged: return "converged";
+    case StopReason::MaxShots: return "max-shots";
+    case StopReason::TimeLimit: return "time-limit";
+    case StopReason::NothingToShoot: return "nothing-to-shoot";
+    }
+    return "?";
+}
+
+Solver::Solver(const Scene& scene, const SolverOptions& options)
+    : scene_(&scene), options_((validate(options), options)),
+      hierarchy_(scene, discretise(scene, options.hierarchy)) {
+    provider_ = make_provider(options.ff, scene, hierarchy_.discretisation(), options.provider);
+    init();
+}
+
+Solver::Solver(const Scene& scene, const SolverOptions& options,
+               std::unique_ptr<FormFactorProvider> provider)
+    : scene_(&scene), options_((validate(options), options)),
+      hierarchy_(scene, discretise(scene, options.hierarchy)), provider_(std::move(provider)) {
+    HEMIRAD_CHECK(provider_ != nullptr);
+    init();
+}
+
+void Solver::init() {
+    emitted_ = scene_->emitted_power();
+    rho_max_ = scene_->max_reflectance();
+    // Default minimum shooter size: the size of the smallest leaf patches' polygons' leaves.
+    min_size_ = options_.shooter_min_size;
+    if (min_size_ <= 0) {
+        double smallest = 1e300;
+        for (std::size_t p = 0; p < scene_->polygons.size(); ++p) {
+            const double leaf = std::sqrt(scene_->polygons[p].area) /
+                                double(1u << hierarchy_.depth(std::uint32_t(p)));
+            smallest = std::min(smallest, leaf);
+        }
+        min_size_ = 0.5 * smallest;
+    }
+    check_stop();
+}
+
+double Solver::seconds() const { return seconds_; }
+
+double Solver::unshot_fraction() const {
+    const dvec3 u = hierarchy_.total_unshot_power();
+    double f = 0;
+    for (int c = 0; c < 3; ++c)
+        if (emitted_[c] > 0) f = std::max(f, u[c] / emitted_[c]);
+    return f;
+}
+
+double Solver::error_bound() const { return unshot_fraction() / (1.0 - rho_max_); }
+
+void Solver::check_stop() {
+    if (error_bound() <= options_.tolerance) stop_ = StopReason::Converged;
+    else if (shots_ >= options_.max_shots) stop_ = StopReason::MaxShots;
+    else if (options_.time_limit > 0 && seconds_ >= options_.time_limit)
+        stop_ = StopReason::TimeLimit;
+    else if (sum(hierarchy_.total_unshot_power()) <= 0) stop_ = StopReason::NothingToShoot;
+    else stop_ = StopReason::Running;
+}
+
+PatchAddress Solver::select_shooter(std::uint32_t polygon) {
+    const bool tri = scene_->polygons[polygon].is_triangle();
+    const int depth = hierarchy_.depth(polygon);
+    const double threshold =
+        options_.shooter_power_fraction * sum(hierarchy_.total_unshot_power());
+    PatchAddress a{polygon, 0, 0};
+    while (int(a.level) < depth) {
+        PatchAddress best = a;
+        double best_power = -1;
+        for (std::uint32_t c : patch_children(tri, a.level, a.index)) {
+            const PatchAddress ca{polygon, a.level + 1, c};
+            const Hierarchy::Node& n = hierarchy_.node(ca);
+            const double power = double(n.dB.x + n.dB.y + n.dB.z) * double(n.area);
+            if (power > best_power) best_power = power, best = ca;
+        }
+        if (!options_.flat) {
+            const double size = std::sqrt(double(hierarchy_.node(best).area));
+            if (best_power < threshold || size < min_size_) break;
+        }
+        a = best;
+    }
+    return a;
+}
+
+bool Solver::step() {
+    check_stop();
+    if (stop_ != StopReason::Running) return false;
+    const auto t_start = Clock::now();
+    ShotRecord rec;
+    rec.shot = shots_ + 1;
+
+    // 1. Select: the polygon with the greatest unshot power, push-pulled, then greedy descent.
+    auto t0 = Clock::now();
+    std::uint32_t polygon = 0;
+    double best = -1;
+    for (std::uint32_t p = 0; p < scene_->polygons.size(); ++p) {
+        const double u = sum(hierarchy_.unshot_power(p));
+        if (u > best) best = u, polygon = p;
+    }
+    rec.t_select = since(t0);
+    t0 = Clock::now();
+    if (hierarchy_.needs_push_pull(polygon)) hierarchy_.push_pull(polygon);
+    rec.t_push_pull = since(t0);
+    t0 = Clock::now();
+    const PatchAddress sa = select_shooter(polygon);
+    rec.t_select += since(t0);
+
+    const Polygon& poly = scene_->polygons[polygon];
+    Shooter shooter;
+    shooter.address = sa;
+    shooter.geometry = patch_geometry(poly, sa.level, sa.index);
+    shooter.normal = poly.normal;
+    const dvec3 dB(hierarchy_.node(sa).dB);
+    const double area_s = double(hierarchy_.node(sa).area);
+    shooter.unshot_power = sum(dB) * area_s;
+    const double total = sum(hierarchy_.total_unshot_power());
+    shooter.power_fraction = total > 0 ? std::min(1.0, shooter.unshot_power / total) : 1.0;
+    rec.shooter = sa;
+    rec.shooter_power = shooter.unshot_power;
+
+    // 2. Form factors F(j -> S) for every receiving node.
+    t0 = Clock::now();
+    provider_->shoot(shooter, links_);
+    rec.t_form_factors = since(t0);
+    rec.ff_phases = provider_->last_timings();
+    rec.links = links_.size();
+
+    // 3. Update: dI_j += F(j->S) dB_S (irradiance); row sum sum_j F(j->S) A_j / A_S.
+    t0 = Clock::now();
+    double row = 0;
+    for (const Link& l : links_) row += double(l.ff) * double(hierarchy_.node(l.receiver).area);
+    row /= area_s;
+    rec.row_sum = row;
+    double scale = 1.0;
+    if (options_.row_guard && row > 1.0) {
+        scale = 1.0 / row;
+        rec.row_guarded = true;
+        ++row_guarded_;
+    }
+    dvec3 received(0.0);
+    for (const Link& l : links_) {
+        const dvec3 irradiance = double(l.ff) * scale * dB;
+        const double a = double(hierarchy_.node(l.receiver).area);
+        const dvec3& rho = scene_->material_of(scene_->polygons[l.receiver.polygon]).rho;
+        hierarchy_.receive(l.receiver, irradiance);
+        received += irradiance * a;
+        absorbed_ += (dvec3(1.0) - rho) * irradiance * a;
+    }
+    escaped_ += dB * area_s - received;
+    hierarchy_.clear_unshot(sa);
+    rec.t_update = since(t0);
+
+    row_min_ = std::min(row_min_, row);
+    row_max_ = std::max(row_max_, row);
+    row_total_ += row;
+    ++shots_;
+    last_polygon_ = polygon;
+    seconds_ += since(t_start);
+    rec.unshot = hierarchy_.total_unshot_power();
+    rec.unshot_fraction = unshot_fraction();
+    rec.error_bound = error_bound();
+    last_ = std::move(rec);
+    return true;
+}
+
+Solver::RowSumStats Solver::row_sums() const {
+    RowSumStats s;
+    if (shots_ > 0) {
+        s.min = row_min_;
+        s.max = row_max_;
+        s.mean = row_total_ / double(shots_);
+    }
+    s.guarded = row_guarded_;
+    return s;
+}
+
+Hierarchy& Solver::solution() {
+    hierarchy_.push_pull_all();
+    return hierarchy_;
+}
+
+dvec3 Solver::ambient_irradiance() const {
+    double area = 0;
+    dvec3 rho_area(0.0);
+    for (const Polygon& p : scene_->polygons) {
+        area += p.area;
+        rho_area += scene_->material_of(p).rho * p.area;
+    }
+    if (area <= 0) return dvec3(0.0);
+    const dvec3 rho_avg = rho_area / area;
+    const dvec3 R = dvec3(1.0) / (dvec3(1.0) - rho_avg);
+    return R * hierarchy_.total_unshot_power() / area;
+}
+
+Solver::Counters Solver::counters() const {
+    Counters c;
+    c.shots = shots_;
+    c.absorbed = absorbed_;
+    c.escaped = escaped_;
+    c.row_min = row_min_;
+    c.row_max = row_max_;
+    c.row_total = row_total_;
+    c.row_guarded = row_guarded_;
+    c.last_polygon = last_polygon_;
+    c.seconds = seconds_;
+    return c;
+}
+
+void Solver::restore(const Counters& c) {
+    shots_ = c.shots;
+    absorbed_ = c.absorbed;
+    escaped_ = c.escaped;
+    row_min_ = c.row_min;
+    row_max_ = c.row_max;
+    row_total_ = c.row_total;
+    row_guarded_ = c.row_guarded;
+    last_polygon_ = c.last_polygon;
+    seconds_ = c.seconds;
+    check_stop();
+}
+
+} // namespace hemirad
