@@ -1,0 +1,121 @@
+#include "hemirad/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "hemirad/error.h"
+#include "hemirad/readout.h"
+#include "output/atomic_file.h"
+
+namespace hemirad {
+
+Json solve_report(Solver& solver) {
+    const Scene& scene = solver.scene();
+    Hierarchy& h = solver.solution();
+    Json j = Json::object();
+    j["scene"] = scene.source;
+    j["ff"] = solver.options().ff;
+    j["polygons"] = scene.polygons.size();
+    j["leaf_patches"] = h.leaf_count();
+    j["nodes"] = h.node_count();
+    j["bytes_per_leaf"] = h.bytes_per_leaf();
+    j["shots"] = solver.shots();
+    j["seconds"] = solver.seconds();
+    j["emitted_power"] = solver.emitted_power();
+    j["absorbed_power"] = solver.absorbed_power();
+    j["escaped_power"] = solver.escaped_power();
+    j["unshot_power"] = h.total_unshot_power();
+    j["unshot_fraction"] = solver.unshot_fraction();
+    j["error_bound"] = solver.error_bound();
+    j["tolerance"] = solver.options().tolerance;
+    j["converged"] = solver.converged();
+    j["stop_reason"] = to_string(solver.stop_reason());
+    const Solver::RowSumStats rs = solver.row_sums();
+    j["row_sum"]["min"] = rs.min;
+    j["row_sum"]["mean"] = rs.mean;
+    j["row_sum"]["max"] = rs.max;
+    j["row_sum"]["guarded"] = rs.guarded;
+    j["quantities"] = "E = incident irradiance [W per scene unit^2], RGB";
+    Json groups = Json::array();
+    for (std::uint32_t g = 0; g < scene.groups.size(); ++g) {
+        const GroupIrradiance gi = group_irradiance(h, g);
+        Json o = Json::object();
+        o["name"] = scene.groups[g];
+        o["area"] = gi.area;
+        o["E_avg"] = gi.E_avg;
+        o["E_min"] = gi.E_min;
+        o["E_max"] = gi.E_max;
+        groups.push_back(o);
+    }
+    j["groups"] = groups;
+    return j;
+}
+
+std::vector<Probe> read_probes(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw InputError(path, 0, "cannot open probe file");
+    std::vector<Probe> probes;
+    std::string line;
+    int number = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        const auto first = line.find_first_not_of(" \t");
+        if (first == std::string::npos || line[first] == '#') continue;
+        double v[6];
+        int count = 0;
+        std::stringstream ss(line);
+        std::string cell;
+        bool numeric = true;
+        while (std::getline(ss, cell, ',')) {
+            char* end = nullptr;
+            const double x = std::strtod(cell.c_str(), &end);
+            while (end && (*end == ' ' || *end == '\t')) ++end;
+            if (end == cell.c_str() || (end && *end != '\0') || !std::isfinite(x)) {
+                numeric = false;
+                break;
+            }
+            if (count < 6) v[count] = x;
+            ++count;
+        }
+        if (!numeric) {
+            if (probes.empty() && number == 1) continue; // header line
+            throw InputError(path, number, "expected 6 numbers x,y,z,nx,ny,nz: '" + line + "'");
+        }
+        if (count != 6)
+            throw InputError(path, number, "expected 6 numbers x,y,z,nx,ny,nz, got " +
+                                               std::to_string(count) + ": '" + line + "'");
+        Probe p{dvec3(v[0], v[1], v[2]), dvec3(v[3], v[4], v[5])};
+        if (glm::length(p.normal) == 0)
+            throw InputError(path, number, "the normal (0,0,0) has no direction");
+        probes.push_back(p);
+    }
+    return probes;
+}
+
+std::string probes_csv(const std::vector<Probe>& probes, const Hierarchy& h) {
+    std::ostringstream s;
+    s.precision(9);
+    s << "x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group\n";
+    for (const Probe& p : probes) {
+        s << p.position.x << "," << p.position.y << "," << p.position.z << "," << p.normal.x
+          << "," << p.normal.y << "," << p.normal.z << ",";
+        const auto sp = find_surface(h.scene(), p.position, p.normal);
+        if (!sp) {
+            s << ",,,,none\n";
+            continue;
+        }
+        const dvec3 E = irradiance_at(h, *sp);
+        s << E.x << "," << E.y << "," << E.z << "," << sp->polygon << ","
+          << h.scene().groups[h.scene().polygons[sp->polygon].group] << "\n";
+    }
+    return s.str();
+}
+
+void write_text_file(const std::string& path, const std::string& contents) {
+    write_file_atomically(path, contents);
+}
+
+} // namespace hemirad

@@ -1,0 +1,108 @@
+// hemirad formfactors: the form factor from one surface group to every group (paper 000).
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <map>
+
+#include "commands.h"
+#include "hemirad/error.h"
+#include "hemirad/hierarchy.h"
+#include "hemirad/json.h"
+#include "hemirad/provider.h"
+
+namespace hemirad::cli {
+
+int cmd_formfactors(int argc, char** argv) {
+    std::string scene_name, from, ff = "hybrid";
+    bool json = false, leaves = false;
+    HierarchyOptions ho;
+    ho.max_depth = 0;
+    ProviderOptions po;
+    BuiltinOptions builtin;
+    ArgParser args("hemirad formfactors", "hemirad formfactors SCENE --from GROUP [options]",
+                   "Shoots from every leaf patch of every polygon of GROUP and reports the form\n"
+                   "factor from GROUP to every group, F(GROUP -> G) = sum over shooters of\n"
+                   "A_s F(s -> G) / A_GROUP, and the row sum (1 in a closed scene).");
+    args.positional("SCENE", &scene_name, "OBJ file or built-in scene");
+    args.option("--from", &from, "GROUP", "the shooting surface group");
+    args.option("--ff", &ff, "METHOD", "hybrid, analytic, hemicube, reference, pdm, sr");
+    args.option("--max-depth", &ho.max_depth, "D", "receiver and shooter quadtree depth (0..11)");
+    args.option("--patch-size", &ho.patch_size, "S", "leaf patch size (0 = diagonal / 64)");
+    args.flag("--leaves", &leaves, "link receivers at their leaves (no adaptive linking)");
+    args.option("--resolution", &po.gpu.resolution, "N", "GPU: hemicube resolution (0 = 256)");
+    args.option("--lod-bias", &po.gpu.lod_bias, "B", "GPU: mip LOD bias");
+    args.flag("--builtin-acos", &po.gpu.builtin_acos, "GPU: GLSL acos instead of the table");
+    args.option("--backend", &po.gpu.backend, "NAME", "GL backend: auto, egl, osmesa");
+    args.option("--sr-rays", &po.cpu.sr_rays, "N", "sr: rays per sample point");
+    args.option("--sr-points", &po.cpu.sr_points, "N", "sr: sample points per shooter");
+    args.option("--gauss-order", &po.cpu.gauss_order, "N", "pdm: Gauss-Legendre order");
+    args.flag("--json", &json, "print JSON");
+    add_scene_options(args, builtin);
+    if (!args.parse(argc, argv, 2)) return 0;
+    if (from.empty()) throw InputError("--from GROUP is required");
+    if (po.gpu.resolution == 0) po.gpu.resolution = 256;
+
+    const Scene scene = load_scene(scene_name, builtin);
+    const int g_from = scene.find_group(from);
+    if (g_from < 0) {
+        std::string names;
+        for (const std::string& g : scene.groups) names += (names.empty() ? "" : ", ") + g;
+        throw InputError("no surface group '" + from + "' in " + scene.source + " (groups: " +
+                         names + ")");
+    }
+    const Discretisation disc = discretise(scene, ho);
+    auto provider = make_provider(ff, scene, disc, po);
+    provider->set_link_at_leaves(leaves);
+    const Hierarchy layout(scene, disc);
+
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<double> to(scene.groups.size(), 0.0);
+    double area_from = 0;
+    std::vector<Link> links;
+    for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
+        const Polygon& poly = scene.polygons[p];
+        if (int(poly.group) != g_from) continue;
+        area_from += poly.area;
+        const std::uint32_t level = disc.depth[p];
+        for (std::uint32_t i = 0; i < (1u << (2 * level)); ++i) {
+            Shooter s;
+            s.address = {p, level, i};
+            s.geometry = patch_geometry(poly, level, i);
+            s.normal = poly.normal;
+            s.unshot_power = 1;
+            provider->shoot(s, links);
+            // A_s F(s->j) = A_j F(j->s): sum receiver-side values weighted by receiver area.
+            for (const Link& l : links)
+                to[scene.polygons[l.receiver.polygon].group] +=
+                    double(l.ff) * double(layout.node(l.receiver).area);
+        }
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    double row = 0;
+    for (double& f : to) {
+        f /= area_from;
+        row += f;
+    }
+    if (json) {
+        Json j = Json::object();
+        j["from"] = from;
+        j["ff"] = ff;
+        j["max_depth"] = ho.max_depth;
+        Json t = Json::object();
+        for (std::size_t g = 0; g < to.size(); ++g) t[scene.groups[g]] = to[g];
+        j["to"] = t;
+        j["row_sum"] = row;
+        j["seconds"] = seconds;
+        std::cout << j.dump() << "\n";
+        return 0;
+    }
+    std::printf("form factors from '%s' (%s, max depth %d)\n", from.c_str(), ff.c_str(),
+                ho.max_depth);
+    for (std::size_t g = 0; g < to.size(); ++g)
+        std::printf("  -> %-16s %.7f\n", scene.groups[g].c_str(), to[g]);
+    std::printf("  row sum            %.7f\n  seconds            %.3f\n", row, seconds);
+    return 0;
+}
+
+} // namespace hemirad::cli

@@ -1,0 +1,101 @@
+// hemirad scene: what was loaded.
+#include <cstdio>
+#include <iostream>
+
+#include "commands.h"
+#include "hemirad/json.h"
+
+namespace hemirad::cli {
+
+void add_scene_options(ArgParser& args, BuiltinOptions& o) {
+    args.section("built-in scenes");
+    args.option("--subdiv", &o.subdiv, "N",
+                "cube, furnace: split each face into NxN polygons (1..1000)");
+    args.option("--rho", &o.rho, "R",
+                "reflectance of every surface, in [0,1); negative = the scene's own");
+    args.option("--rings", &o.sphere_rings, "N", "sphere: latitude rings (4..512)");
+}
+
+void print_warnings(const Scene& scene, bool quiet) {
+    if (quiet) return;
+    for (const std::string& w : scene.warnings)
+        std::fprintf(stderr, "hemirad: warning: %s: %s\n", scene.source.c_str(), w.c_str());
+}
+
+int cmd_scene(int argc, char** argv) {
+    std::string name;
+    bool json = false;
+    BuiltinOptions builtin;
+    ArgParser args("hemirad scene", "hemirad scene SCENE [--json] [options]",
+                   "Loads a scene and prints what it holds.");
+    args.positional("SCENE", &name, "OBJ file or built-in scene (cornell, cube, furnace, sphere)");
+    args.flag("--json", &json, "print JSON instead of text");
+    add_scene_options(args, builtin);
+    if (!args.parse(argc, argv, 2)) return 0;
+
+    const Scene scene = load_scene(name, builtin);
+    const Bounds b = scene.bounds();
+    const dvec3 power = scene.emitted_power();
+    if (json) {
+        Json j = Json::object();
+        j["source"] = scene.source;
+        j["polygons"] = scene.polygons.size();
+        j["triangles"] = scene.triangle_count();
+        j["quads"] = scene.quad_count();
+        j["total_area"] = scene.total_area();
+        j["emitted_power"] = power;
+        j["bounds"]["min"] = b.lo;
+        j["bounds"]["max"] = b.hi;
+        Json mats = Json::array();
+        for (const Material& m : scene.materials) {
+            Json o = Json::object();
+            o["name"] = m.name;
+            o["rho"] = m.rho;
+            o["Ke"] = m.Ke;
+            mats.push_back(o);
+        }
+        j["materials"] = mats;
+        Json groups = Json::array();
+        for (std::size_t g = 0; g < scene.groups.size(); ++g) {
+            double area = 0;
+            long count = 0;
+            dvec3 gp(0.0);
+            for (const Polygon& p : scene.polygons)
+                if (p.group == g) {
+                    area += p.area;
+                    ++count;
+                    gp += scene.material_of(p).exitance() * p.area;
+                }
+            Json o = Json::object();
+            o["name"] = scene.groups[g];
+            o["polygons"] = count;
+            o["area"] = area;
+            o["emitted_power"] = gp;
+            groups.push_back(o);
+        }
+        j["groups"] = groups;
+        Json warnings = Json::array();
+        for (const std::string& w : scene.warnings) warnings.push_back(w);
+        j["warnings"] = warnings;
+        std::cout << j.dump() << "\n";
+        return 0;
+    }
+    print_warnings(scene, false);
+    std::printf("scene      %s\n", scene.source.c_str());
+    std::printf("polygons   %zu (%zu triangles, %zu quads)\n", scene.polygons.size(),
+                scene.triangle_count(), scene.quad_count());
+    std::printf("area       %.6g unit^2\n", scene.total_area());
+    std::printf("emitted    %.6g %.6g %.6g W (RGB)\n", power.x, power.y, power.z);
+    std::printf("bounds     (%.6g, %.6g, %.6g) .. (%.6g, %.6g, %.6g)\n", b.lo.x, b.lo.y, b.lo.z,
+                b.hi.x, b.hi.y, b.hi.z);
+    std::printf("materials  %zu\n", scene.materials.size());
+    for (const Material& m : scene.materials)
+        std::printf("  %-16s rho (%.3f %.3f %.3f)  Ke (%.4g %.4g %.4g)\n", m.name.c_str(), m.rho.x,
+                    m.rho.y, m.rho.z, m.Ke.x, m.Ke.y, m.Ke.z);
+    std::printf("groups     %zu:", scene.groups.size());
+    for (const std::string& g : scene.groups) std::printf(" %s", g.c_str());
+    std::printf("\n");
+    return 0;
+}
+
+} // namespace hemirad::cli

@@ -1,0 +1,164 @@
+// hemirad solve: progressive radiosity to a tolerance, with reports, logs and probes.
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "commands.h"
+#include "hemirad/error.h"
+#include "hemirad/json.h"
+#include "hemirad/readout.h"
+#include "hemirad/solver.h"
+#include "solve_outputs.h"
+
+namespace hemirad::cli {
+
+namespace {
+
+Json address_json(const PatchAddress& a) {
+    Json j = Json::object();
+    j["polygon"] = a.polygon;
+    j["level"] = a.level;
+    j["index"] = a.index;
+    return j;
+}
+
+Json shot_json(const ShotRecord& r) {
+    Json j = Json::object();
+    j["shot"] = r.shot;
+    j["shooter"] = address_json(r.shooter);
+    j["shooter_power"] = r.shooter_power;
+    j["links"] = r.links;
+    Json t = Json::object();
+    t["select"] = r.t_select;
+    t["push_pull"] = r.t_push_pull;
+    t["form_factors"] = r.t_form_factors;
+    t["update"] = r.t_update;
+    for (const auto& p : r.ff_phases) t[std::string("ff_") + p.phase] = p.seconds;
+    j["time"] = t;
+    j["unshot"] = r.unshot;
+    j["unshot_fraction"] = r.unshot_fraction;
+    j["error_bound"] = r.error_bound;
+    j["row_sum"] = r.row_sum;
+    if (r.row_guarded) j["row_guarded"] = true;
+    return j;
+}
+
+} // namespace
+
+int cmd_solve(int argc, char** argv) {
+    std::string scene_name, report, log, probes_in, probes_out;
+    bool quiet = false;
+    SolverOptions so;
+    BuiltinOptions builtin;
+    OutputOptions out;
+    ArgParser args("hemirad solve", "hemirad solve SCENE [options]",
+                   "Solves the radiosity of a scene by progressive shooting until the error\n"
+                   "bound falls under the tolerance, then writes what was asked for.");
+    args.positional("SCENE", &scene_name, "OBJ file or built-in scene (cornell, cube, furnace, sphere)");
+    args.section("solver");
+    args.option("--ff", &so.ff, "METHOD",
+                "form factors: hybrid, analytic, hemicube (GPU); reference, pdm, sr (CPU)");
+    args.option("--tolerance", &so.tolerance, "T",
+                "stop when the error bound is under T times the emitted power");
+    args.option("--max-shots", &so.max_shots, "N", "stop after N shots");
+    args.option("--time-limit", &so.time_limit, "S", "stop after S seconds (0 = no limit)");
+    args.option("--patch-size", &so.hierarchy.patch_size, "S",
+                "leaf patch size in scene units (0 = scene diagonal / 64)");
+    args.option("--max-depth", &so.hierarchy.max_depth, "D", "deepest quadtree level (0..11)");
+    args.option("--shooter-power", &so.shooter_power_fraction, "F",
+                "shooter descent stops before a child with less than F of the unshot power");
+    args.option("--shooter-size", &so.shooter_min_size, "S",
+                "shooter descent stops before a child smaller than S (0 = half a leaf)");
+    args.flag("--flat", &so.flat, "shoot from leaf patches only (no hierarchy)");
+    args.flag("--row-guard", &so.row_guard, "rescale a shot whose form-factor row sum exceeds 1");
+    args.section("form factors");
+    args.option("--resolution", &so.provider.gpu.resolution, "N",
+                "GPU: fixed hemicube resolution (0 = adaptive)");
+    args.option("--min-resolution", &so.provider.gpu.min_resolution, "N",
+                "GPU: adaptive resolution for the weakest shooters");
+    args.option("--max-resolution", &so.provider.gpu.max_resolution, "N",
+                "GPU: adaptive resolution for the strongest shooters");
+    args.option("--lod-bias", &so.provider.gpu.lod_bias, "B",
+                "GPU: mip LOD bias (+1 links patches twice as large)");
+    args.flag("--builtin-acos", &so.provider.gpu.builtin_acos,
+              "GPU: GLSL acos instead of the 2048-entry lookup table");
+    args.option("--backend", &so.provider.gpu.backend, "NAME", "GL backend: auto, egl, osmesa");
+    args.option("--device", &so.provider.gpu.device, "N", "EGL device index (-1 = default)");
+    args.option("--link-angle", &so.provider.cpu.link_angle, "A",
+                "CPU: refine receivers while size/distance exceeds A");
+    args.option("--visibility-samples", &so.provider.cpu.visibility_samples, "N",
+                "reference: NxN shooter points for ray-cast visibility");
+    args.section("output");
+    args.option("--report", &report, "FILE.json", "write a JSON report");
+    args.option("--log", &log, "FILE.jsonl", "write one JSON line per shot");
+    args.option("--probes", &probes_in, "IN.csv", "points x,y,z,nx,ny,nz to evaluate");
+    args.option("--probe-out", &probes_out, "OUT.csv", "irradiance at the probe points");
+    add_output_options(args, out);
+    args.flag("--quiet", &quiet, "print nothing but errors");
+    add_scene_options(args, builtin);
+    if (!args.parse(argc, argv, 2)) return 0;
+    if (!probes_in.empty() && probes_out.empty())
+        throw InputError("--probes needs --probe-out OUT.csv");
+    validate_output_options(out);
+
+    const Scene scene = load_scene(scene_name, builtin);
+    print_warnings(scene, quiet);
+    const std::vector<Probe> probes = probes_in.empty() ? std::vector<Probe>{}
+                                                        : read_probes(probes_in);
+    Solver solver(scene, so);
+    if (!quiet) {
+        std::fprintf(stderr, "hemirad: %s: %zu polygons, %llu leaf patches, form factors: %s\n",
+                     scene.source.c_str(), scene.polygons.size(),
+                     (unsigned long long)solver.hierarchy().leaf_count(),
+                     solver.provider().name().c_str());
+    }
+    std::ofstream log_file;
+    if (!log.empty()) {
+        log_file.open(log, std::ios::trunc);
+        if (!log_file) throw RuntimeError("cannot write " + log);
+    }
+    const bool tty = isatty(2) && !quiet;
+    auto last_print = std::chrono::steady_clock::now();
+    install_interrupt_handler();
+    while (!interrupted() && solver.step()) {
+        const ShotRecord& r = solver.last_shot();
+        if (log_file) log_file << shot_json(r).dump(0) << "\n";
+        const auto now = std::chrono::steady_clock::now();
+        if (tty && now - last_print > std::chrono::milliseconds(250)) {
+            std::fprintf(stderr, "\rshot %ld  unshot %.3e  error bound %.3e / %.3g  %.1f s   ",
+                         r.shot, r.unshot_fraction, r.error_bound, so.tolerance,
+                         solver.seconds());
+            last_print = now;
+        }
+    }
+    if (tty) std::fprintf(stderr, "\r%*s\r", 79, "");
+    if (log_file) {
+        log_file.close();
+        if (!log_file) throw RuntimeError("error writing " + log);
+    }
+    Hierarchy& h = solver.solution();
+    const bool was_interrupted = interrupted();
+    if (!quiet)
+        std::fprintf(stderr,
+                     "hemirad: %s after %ld shots in %.2f s: error bound %.3e (tolerance %.3g), "
+                     "row sum %.4f..%.4f\n",
+                     was_interrupted ? "interrupted" : to_string(solver.stop_reason()),
+                     solver.shots(), solver.seconds(), solver.error_bound(), so.tolerance,
+                     solver.row_sums().min, solver.row_sums().max);
+
+    if (!report.empty()) write_report(report, solver, scene);
+    if (!probes_out.empty()) write_probes(probes_out, probes, h);
+    write_outputs(out, solver, quiet);
+    if (was_interrupted) {
+        std::fprintf(stderr, "hemirad: interrupted by a signal; wrote the outputs of the current "
+                             "solution\n");
+        return 130;
+    }
+    return 0;
+}
+
+} // namespace hemirad::cli

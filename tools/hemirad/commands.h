@@ -1,0 +1,22 @@
+// The hemirad command-line program: one function per subcommand.
+#pragma once
+
+#include <string>
+
+#include "hemirad/args.h"
+#include "hemirad/scene_io.h"
+
+namespace hemirad::cli {
+
+int cmd_info(int argc, char** argv);
+int cmd_scene(int argc, char** argv);
+int cmd_solve(int argc, char** argv);
+int cmd_formfactors(int argc, char** argv);
+
+/// Options that select and shape a scene (built-in scenes' parameters).
+void add_scene_options(ArgParser& args, BuiltinOptions& o);
+
+/// Prints "hemirad: warning: ..." for each scene warning unless quiet.
+void print_warnings(const Scene& scene, bool quiet);
+
+} // namespace hemirad::cli

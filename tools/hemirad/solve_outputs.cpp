@@ -1,0 +1,44 @@
+#include "solve_outputs.h"
+
+#include <csignal>
+#include <cstdio>
+
+#include "hemirad/error.h"
+
+namespace hemirad::cli {
+
+namespace {
+volatile std::sig_atomic_t g_interrupted = 0;
+extern "C" void on_signal(int) { g_interrupted = 1; }
+} // namespace
+
+void install_interrupt_handler() {
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+}
+
+bool interrupted() { return g_interrupted != 0; }
+
+void add_output_options(ArgParser& args, OutputOptions& o) {
+    (void)args;
+    (void)o;
+}
+
+void validate_output_options(const OutputOptions& o) { (void)o; }
+
+void write_outputs(const OutputOptions& o, Solver& solver, bool quiet) {
+    (void)o;
+    (void)solver;
+    (void)quiet;
+}
+
+void write_report(const std::string& path, Solver& solver, const Scene& scene) {
+    (void)scene;
+    write_text_file(path, solve_report(solver).dump() + "\n");
+}
+
+void write_probes(const std::string& path, const std::vector<Probe>& probes, const Hierarchy& h) {
+    write_text_file(path, probes_csv(probes, h));
+}
+
+} // namespace hemirad::cli

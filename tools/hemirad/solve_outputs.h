@@ -1,0 +1,28 @@
+// What `hemirad solve` writes after solving, and its signal handling.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "hemirad/args.h"
+#include "hemirad/report.h"
+#include "hemirad/solver.h"
+
+namespace hemirad::cli {
+
+/// Image and export outputs of a solve.
+struct OutputOptions {
+    std::vector<std::string> images; ///< -o FILE.png / FILE.exr
+};
+void add_output_options(ArgParser& args, OutputOptions& o);
+void validate_output_options(const OutputOptions& o);
+void write_outputs(const OutputOptions& o, Solver& solver, bool quiet);
+
+void write_report(const std::string& path, Solver& solver, const Scene& scene);
+void write_probes(const std::string& path, const std::vector<Probe>& probes, const Hierarchy& h);
+
+/// SIGINT/SIGTERM set a flag: the solve finishes its shot, writes its outputs, exits non-zero.
+void install_interrupt_handler();
+bool interrupted();
+
+} // namespace hemirad::cli
