@@ -1,0 +1,135 @@
+// "sr" provider: paper 000's shooting method with random sample points (§4): `sr_points`
+// points uniformly distributed by area on the shooter patch, `sr_rays` cosine-distributed rays
+// from each; the nearest hit of each ray is credited to the receiving node that contains it.
+//   F(S->j) = hits_j / (sr_points * sr_rays),   F(j->S) = F(S->j) A_S / A_j   (reciprocity).
+// Linking: always at the leaves (level disc.depth of the polygon hit), whatever
+// set_link_at_leaves says: a hit can only be credited to the node that contains it, and
+// choosing a coarser node by its distance would need the hits first. F(j->S) is not clamped
+// to 1 (a small node can draw more than its share of hits by chance); this keeps the estimator
+// unbiased and the row sum sum_j F(j->S) A_j / A_S = (rays that hit a receiver) / (rays) <= 1.
+// Sample points are drawn in fixed chunks of kChunk points, each chunk with its own
+// std::mt19937_64 seeded from options.seed, the shooter address and the chunk's index, so
+// results do not depend on the number of threads.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <thread>
+
+#include "ff/cpu_linking.h"
+
+namespace hemirad::cpu {
+
+namespace {
+
+// Uniform double in [0,1) from the top 53 bits (portable, unlike uniform_real_distribution).
+double uniform01(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
+
+// A point uniformly distributed by area on a patch (a quad as two triangles chosen by area).
+dvec3 sample_patch(const PatchGeometry& g, std::mt19937_64& rng) {
+    dvec3 a = g.corners[0], b = g.corners[1], c = g.corners[2];
+    const double pick = uniform01(rng);
+    if (g.count == 4) {
+        const double a1 = glm::length(glm::cross(b - a, c - a));
+        const double a2 = glm::length(glm::cross(c - a, g.corners[3] - a));
+        if (pick * (a1 + a2) >= a1) {
+            b = c;
+            c = g.corners[3];
+        }
+    }
+    const double r1 = std::sqrt(uniform01(rng)), r2 = uniform01(rng);
+    return a + r1 * (1 - r2) * (b - a) + r1 * r2 * (c - a);
+}
+
+// Orthonormal basis around unit n (Duff et al. 2017).
+void basis(const dvec3& n, dvec3& t, dvec3& b) {
+    const double sign = std::copysign(1.0, n.z);
+    const double a = -1.0 / (sign + n.z);
+    const double bb = n.x * n.y * a;
+    t = dvec3(1.0 + sign * n.x * n.x * a, sign * bb, -sign * n.x);
+    b = dvec3(bb, sign + n.y * n.y * a, -n.y);
+}
+
+constexpr int kChunk = 64; // sample points per generator
+
+class SrProvider final : public CpuProvider {
+  public:
+    using CpuProvider::CpuProvider;
+    std::string name() const override { return "sr"; }
+
+    void shoot(const Shooter& s, std::vector<Link>& links) override {
+        const auto start = std::chrono::steady_clock::now();
+        begin_shot(s, links);
+        const int points = options_.sr_points, rays = options_.sr_rays;
+        const std::uint64_t base =
+            mix64(options_.seed ^ mix64((std::uint64_t(s.address.polygon) << 36) ^
+                                        (std::uint64_t(s.address.level) << 32) ^ s.address.index));
+        dvec3 t, b;
+        basis(s.normal, t, b);
+        // Hit keys: (polygon << 32) | patch index at the polygon's leaf level.
+        const int chunks = (points + kChunk - 1) / kChunk;
+        const int nthreads = std::min(threads_, chunks);
+        std::vector<std::vector<std::uint64_t>> keys(nthreads);
+        const auto work = [&](int thread) {
+            std::vector<std::uint64_t>& out = keys[thread];
+            for (int c = thread; c < chunks; c += nthreads) {
+                std::mt19937_64 rng(mix64(base + std::uint64_t(c)));
+                for (int p = c * kChunk; p < std::min(points, (c + 1) * kChunk); ++p) {
+                    const dvec3 origin = sample_patch(s.geometry, rng);
+                    for (int k = 0; k < rays; ++k) {
+                        // Cosine-distributed direction: disk point (r, phi) lifted to the
+                        // hemisphere, r = sqrt(xi1), phi = 2 pi xi2.
+                        const double r = std::sqrt(uniform01(rng));
+                        const double phi = 2.0 * std::numbers::pi * uniform01(rng);
+                        const double z = std::sqrt(std::max(0.0, 1.0 - r * r));
+                        const dvec3 dir =
+                            r * std::cos(phi) * t + r * std::sin(phi) * b + z * s.normal;
+                        Hit hit;
+                        if (!bvh_->intersect(origin, dir, 1e300, hit, s.address.polygon)) continue;
+                        if (!hit.front) continue; // absorbed by the back of a one-sided polygon
+                        const Polygon& q = scene_.polygons[hit.polygon];
+                        const std::uint32_t level = std::uint32_t(depth_of(hit.polygon));
+                        out.push_back((std::uint64_t(hit.polygon) << 32) |
+                                      patch_at(q, level, hit.u, hit.v));
+                    }
+                }
+            }
+        };
+        std::vector<std::thread> pool;
+        for (int i = 1; i < nthreads; ++i) pool.emplace_back(work, i);
+        work(0);
+        for (std::thread& th : pool) th.join();
+        std::vector<std::uint64_t> all;
+        for (const auto& k : keys) all.insert(all.end(), k.begin(), k.end());
+        std::sort(all.begin(), all.end());
+        const double total = double(points) * double(rays);
+        for (std::size_t i = 0; i < all.size();) {
+            std::size_t j = i;
+            while (j < all.size() && all[j] == all[i]) ++j;
+            const std::uint32_t poly = std::uint32_t(all[i] >> 32);
+            const std::uint32_t index = std::uint32_t(all[i] & 0xffffffffu);
+            const std::uint32_t level = std::uint32_t(depth_of(poly));
+            const Polygon& q = scene_.polygons[poly];
+            const PatchGeometry g = patch_geometry(q, level, index);
+            Link link;
+            link.receiver = {poly, level, index};
+            link.ff = float(double(j - i) / total * s.geometry.area / g.area);
+            link.ff_analytic = float(point_to_polygon_ff(
+                g.centre, q.normal, s.geometry.corners.data(), s.geometry.count));
+            links.push_back(link);
+            i = j;
+        }
+        timings_ = {{"form_factors", seconds_since(start)}};
+    }
+};
+
+} // namespace
+
+std::unique_ptr<FormFactorProvider> make_sr_provider(const Scene& scene, const Discretisation& disc,
+                                                     const CpuProviderOptions& o,
+                                                     std::shared_ptr<const Bvh> bvh) {
+    return std::make_unique<SrProvider>(scene, disc, o, std::move(bvh));
+}
+
+} // namespace hemirad::cpu
