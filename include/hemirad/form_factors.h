@@ -49,6 +49,10 @@ public:
     /// Timings of the last shoot() in seconds, by phase name (render, readback, reduce, ...).
     struct Timing { const char* phase; double seconds; };
     virtual std::vector<Timing> last_timings() const { return {}; }
+    /// Fraction of the shooter's hemisphere (by form factor) covered by the backs of
+    /// polygons in the last shoot(): near 1 when the shooter's centre is enclosed (under a
+    /// box, behind a light), where a point-sampled shot would lose the patch's power.
+    virtual double last_backface_fraction() const { return 0; }
 
 protected:
     bool link_at_leaves_ = false;

@@ -18,6 +18,7 @@ struct GpuProviderOptions {
     double lod_bias = 0.0;       ///< added to the mip level chosen by GL (+1 = patches 2x larger)
     bool builtin_acos = false;   ///< use GLSL acos instead of the 2048-entry lookup table
     std::string backend = "auto"; ///< GL context backend: auto, egl, osmesa
+    bool use_current_context = false; ///< render in the caller's current GL context (viewer)
     int device = -1;             ///< EGL device index (-1 = default)
 };
 

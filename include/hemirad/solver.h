@@ -33,6 +33,10 @@ struct SolverOptions {
     double shooter_min_size = 0;
     bool flat = false;             ///< always shoot from leaves (no hierarchy), for comparison
     bool row_guard = false;        ///< rescale a shot's form factors if their row sum exceeds 1
+    /// A shooter whose hemisphere is covered by the backs of polygons for more than this
+    /// fraction (its centre is enclosed: under a box, behind a light) is not shot; its
+    /// children are shot instead, so that its power is not lost. (0, 1]; 1 = never refine.
+    double enclosed_fraction = 0.5;
 };
 
 /// One shot, as reported after it (also one line of --log).
@@ -41,6 +45,7 @@ struct ShotRecord {
     PatchAddress shooter;
     double shooter_power = 0;   ///< unshot power shot, sum over RGB [W]
     std::size_t links = 0;
+    int refined = 0;            ///< enclosed shooters replaced by their children before this shot
     double row_sum = 0;         ///< sum_j F(j->S) A_j / A_S before any guard (1 if closed)
     bool row_guarded = false;   ///< the guard rescaled this row
     double t_select = 0, t_push_pull = 0, t_form_factors = 0, t_update = 0; ///< [s]
@@ -115,6 +120,7 @@ private:
     Hierarchy hierarchy_;
     std::unique_ptr<FormFactorProvider> provider_;
     std::vector<Link> links_;
+    std::vector<std::uint8_t> enclosed_; ///< per node: its centre is enclosed, shoot children
     ShotRecord last_;
     long shots_ = 0;
     StopReason stop_ = StopReason::Running;

@@ -63,6 +63,10 @@ Solver::Solver(const Scene& scene, const SolverOptions& options,
 }
 
 void Solver::init() {
+    if (!(options_.enclosed_fraction > 0 && options_.enclosed_fraction <= 1))
+        throw InputError("--enclosed-fraction " + std::to_string(options_.enclosed_fraction) +
+                         " must be in (0, 1]");
+    enclosed_.assign(hierarchy_.node_count(), 0);
     emitted_ = scene_->emitted_power();
     rho_max_ = scene_->max_reflectance();
     // Default minimum shooter size: the size of the smallest leaf patches' polygons' leaves.
@@ -107,6 +111,7 @@ PatchAddress Solver::select_shooter(std::uint32_t polygon) {
         options_.shooter_power_fraction * sum(hierarchy_.total_unshot_power());
     PatchAddress a{polygon, 0, 0};
     while (int(a.level) < depth) {
+        const bool must_descend = enclosed_[hierarchy_.node_id(a)] != 0;
         PatchAddress best = a;
         double best_power = -1;
         for (std::uint32_t c : patch_children(tri, a.level, a.index)) {
@@ -115,7 +120,7 @@ PatchAddress Solver::select_shooter(std::uint32_t polygon) {
             const double power = double(n.dB.x + n.dB.y + n.dB.z) * double(n.area);
             if (power > best_power) best_power = power, best = ca;
         }
-        if (!options_.flat) {
+        if (!options_.flat && !must_descend) {
             const double size = std::sqrt(double(hierarchy_.node(best).area));
             if (best_power < threshold || size < min_size_) break;
         }
@@ -143,27 +148,39 @@ bool Solver::step() {
     t0 = Clock::now();
     if (hierarchy_.needs_push_pull(polygon)) hierarchy_.push_pull(polygon);
     rec.t_push_pull = since(t0);
-    t0 = Clock::now();
-    const PatchAddress sa = select_shooter(polygon);
-    rec.t_select += since(t0);
-
     const Polygon& poly = scene_->polygons[polygon];
+    PatchAddress sa;
     Shooter shooter;
-    shooter.address = sa;
-    shooter.geometry = patch_geometry(poly, sa.level, sa.index);
-    shooter.normal = poly.normal;
-    const dvec3 dB(hierarchy_.node(sa).dB);
-    const double area_s = double(hierarchy_.node(sa).area);
-    shooter.unshot_power = sum(dB) * area_s;
-    const double total = sum(hierarchy_.total_unshot_power());
-    shooter.power_fraction = total > 0 ? std::min(1.0, shooter.unshot_power / total) : 1.0;
+    dvec3 dB;
+    double area_s = 0;
+    for (;;) {
+        t0 = Clock::now();
+        sa = select_shooter(polygon);
+        rec.t_select += since(t0);
+        shooter.address = sa;
+        shooter.geometry = patch_geometry(poly, sa.level, sa.index);
+        shooter.normal = poly.normal;
+        dB = dvec3(hierarchy_.node(sa).dB);
+        area_s = double(hierarchy_.node(sa).area);
+        shooter.unshot_power = sum(dB) * area_s;
+        const double total = sum(hierarchy_.total_unshot_power());
+        shooter.power_fraction = total > 0 ? std::min(1.0, shooter.unshot_power / total) : 1.0;
+
+        // 2. Form factors F(j -> S) for every receiving node.
+        t0 = Clock::now();
+        provider_->shoot(shooter, links_);
+        rec.t_form_factors += since(t0);
+        // An enclosed centre would lose the patch's power: shoot its children instead.
+        if (provider_->last_backface_fraction() > options_.enclosed_fraction &&
+            int(sa.level) < hierarchy_.depth(polygon)) {
+            enclosed_[hierarchy_.node_id(sa)] = 1;
+            ++rec.refined;
+            continue;
+        }
+        break;
+    }
     rec.shooter = sa;
     rec.shooter_power = shooter.unshot_power;
-
-    // 2. Form factors F(j -> S) for every receiving node.
-    t0 = Clock::now();
-    provider_->shoot(shooter, links_);
-    rec.t_form_factors = since(t0);
     rec.ff_phases = provider_->last_timings();
     rec.links = links_.size();
 

@@ -29,7 +29,7 @@ int cmd_formfactors(int argc, char** argv) {
     args.option("--max-depth", &ho.max_depth, "D", "receiver and shooter quadtree depth (0..11)");
     args.option("--patch-size", &ho.patch_size, "S", "leaf patch size (0 = diagonal / 64)");
     args.flag("--leaves", &leaves, "link receivers at their leaves (no adaptive linking)");
-    args.option("--resolution", &po.gpu.resolution, "N", "GPU: hemicube resolution (0 = 256)");
+    args.option("--resolution", &po.gpu.resolution, "N", "GPU: hemicube resolution (0 = 512)");
     args.option("--lod-bias", &po.gpu.lod_bias, "B", "GPU: mip LOD bias");
     args.flag("--builtin-acos", &po.gpu.builtin_acos, "GPU: GLSL acos instead of the table");
     args.option("--backend", &po.gpu.backend, "NAME", "GL backend: auto, egl, osmesa");
@@ -40,7 +40,7 @@ int cmd_formfactors(int argc, char** argv) {
     add_scene_options(args, builtin);
     if (!args.parse(argc, argv, 2)) return 0;
     if (from.empty()) throw InputError("--from GROUP is required");
-    if (po.gpu.resolution == 0) po.gpu.resolution = 256;
+    if (po.gpu.resolution == 0) po.gpu.resolution = 512;
 
     const Scene scene = load_scene(scene_name, builtin);
     const int g_from = scene.find_group(from);

@@ -32,6 +32,7 @@ Json shot_json(const ShotRecord& r) {
     j["shooter"] = address_json(r.shooter);
     j["shooter_power"] = r.shooter_power;
     j["links"] = r.links;
+    if (r.refined) j["refined"] = r.refined;
     Json t = Json::object();
     t["select"] = r.t_select;
     t["push_pull"] = r.t_push_pull;
@@ -75,6 +76,9 @@ int cmd_solve(int argc, char** argv) {
                 "shooter descent stops before a child smaller than S (0 = half a leaf)");
     args.flag("--flat", &so.flat, "shoot from leaf patches only (no hierarchy)");
     args.flag("--row-guard", &so.row_guard, "rescale a shot whose form-factor row sum exceeds 1");
+    args.option("--enclosed-fraction", &so.enclosed_fraction, "F",
+                "shoot the children of a shooter whose hemisphere is more than F backs of "
+                "polygons");
     args.section("form factors");
     args.option("--resolution", &so.provider.gpu.resolution, "N",
                 "GPU: fixed hemicube resolution (0 = adaptive)");

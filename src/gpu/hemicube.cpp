@@ -1,0 +1,276 @@
+#include "gpu/hemicube.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/program.h"
+#include "gpu/acos_table.h"
+#include "hemirad/error.h"
+
+namespace hemirad::gpu {
+
+namespace {
+
+struct Vertex {
+    float position[3];
+    float param[2];
+    float polygon;
+};
+
+struct PolygonGpu { // std430 layout of PolygonData in hemicube.frag
+    float v[4][4];
+    float normal[4];
+    std::int32_t info[4];
+};
+static_assert(sizeof(PolygonGpu) == 96);
+
+// Reversed-Z perspective with an infinite far plane, for glClipControl(ZERO_TO_ONE): depth =
+// near / distance, 1 at the near plane and 0 at infinity. The frustum at distance `near`
+// spans [l, r] x [b, t].
+glm::mat4 reversed_z_frustum(double l, double r, double b, double t, double near) {
+    glm::dmat4 m(0.0);
+    m[0][0] = 2 * near / (r - l);
+    m[1][1] = 2 * near / (t - b);
+    m[2][0] = (r + l) / (r - l);
+    m[2][1] = (t + b) / (t - b);
+    m[3][2] = near;
+    m[2][3] = -1;
+    return glm::mat4(m);
+}
+
+} // namespace
+
+HemicubeLayout make_hemicube_layout(int res) {
+    HEMIRAD_CHECK(res >= 2 && res % 2 == 0);
+    HemicubeLayout L;
+    L.res = res;
+    L.width = 2 * res;
+    L.height = res + res / 2;
+    const int h = res / 2;
+    L.faces[0] = {0, 0, res, res};
+    L.faces[1] = {res, 0, res, h};
+    L.faces[2] = {res, h, res, h};
+    L.faces[3] = {0, res, res, h};
+    L.faces[4] = {res, res, res, h};
+    L.delta_ff.assign(std::size_t(L.width) * L.height, 0.f);
+    const double d = 2.0 / res; // pixel side on a face at distance 1 spanning [-1, 1]
+    const double pi = std::numbers::pi;
+    for (int f = 0; f < 5; ++f) {
+        const auto& face = L.faces[f];
+        for (int j = 0; j < face.h; ++j)
+            for (int i = 0; i < face.w; ++i) {
+                const double x = -1 + (i + 0.5) * d;
+                double w;
+                if (f == 0) {
+                    const double y = -1 + (j + 0.5) * d;
+                    const double q = x * x + y * y + 1;
+                    w = d * d / (pi * q * q);
+                } else {
+                    const double z = (j + 0.5) * d; // height above the shooter's plane
+                    const double q = x * x + z * z + 1;
+                    w = z * d * d / (pi * q * q);
+                }
+                L.delta_ff[std::size_t(face.y + j) * L.width + face.x + i] = float(w);
+            }
+    }
+    return L;
+}
+
+HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& disc,
+                                   int max_resolution)
+    : scene_(&scene), max_res_(max_resolution) {
+    const Bounds b = scene.bounds();
+    origin_ = 0.5 * (b.lo + b.hi);
+    near_ = 1e-5 * b.diagonal();
+
+    // Vertices: every polygon as one triangle or two, with its (u,v) parameters.
+    std::vector<Vertex> verts;
+    std::vector<PolygonGpu> polys(scene.polygons.size());
+    const auto vertex = [&](const dvec3& p, float u, float v, std::size_t id) {
+        const dvec3 q = p - origin_;
+        verts.push_back({{float(q.x), float(q.y), float(q.z)}, {u, v}, float(id)});
+    };
+    int max_depth = 0;
+    for (std::size_t i = 0; i < scene.polygons.size(); ++i) {
+        const Polygon& p = scene.polygons[i];
+        first_.push_back(GLint(verts.size()));
+        if (p.is_triangle()) {
+            vertex(p.v[0], 0, 0, i);
+            vertex(p.v[1], 1, 0, i);
+            vertex(p.v[2], 0, 1, i);
+        } else {
+            vertex(p.v[0], 0, 0, i);
+            vertex(p.v[1], 1, 0, i);
+            vertex(p.v[2], 1, 1, i);
+            vertex(p.v[0], 0, 0, i);
+            vertex(p.v[2], 1, 1, i);
+            vertex(p.v[3], 0, 1, i);
+        }
+        count_.push_back(GLsizei(verts.size()) - first_.back());
+        PolygonGpu& g = polys[i];
+        for (int k = 0; k < 4; ++k) {
+            const dvec3 q = (k < p.count ? p.v[k] : p.v[0]) - origin_;
+            g.v[k][0] = float(q.x), g.v[k][1] = float(q.y), g.v[k][2] = float(q.z), g.v[k][3] = 1;
+        }
+        g.normal[0] = float(p.normal.x), g.normal[1] = float(p.normal.y);
+        g.normal[2] = float(p.normal.z), g.normal[3] = p.is_triangle() ? 1.f : 0.f;
+        g.info[0] = disc.depth[i];
+        g.info[1] = g.info[2] = g.info[3] = 0;
+        max_depth = std::max(max_depth, int(disc.depth[i]));
+    }
+    vertices_ = gl::Buffer::create();
+    vertices_.storage(GLsizeiptr(verts.size() * sizeof(Vertex)), verts.data(), 0);
+    polygons_ = gl::Buffer::create();
+    polygons_.storage(GLsizeiptr(polys.size() * sizeof(PolygonGpu)), polys.data(), 0);
+    const std::vector<float> table = make_acos_table();
+    acos_table_ = gl::Buffer::create();
+    acos_table_.storage(GLsizeiptr(table.size() * sizeof(float)), table.data(), 0);
+
+    vao_ = gl::VertexArray::create();
+    vao_.vertex_buffer(0, vertices_, 0, sizeof(Vertex));
+    vao_.attribute(0, 0, 3, GL_FLOAT, offsetof(Vertex, position));
+    vao_.attribute(1, 0, 2, GL_FLOAT, offsetof(Vertex, param));
+    vao_.attribute(2, 0, 1, GL_FLOAT, offsetof(Vertex, polygon));
+
+    // Patch-ID texture: mip m of a 2^D texture holds, at texel (x,y), the patch (x, y, D-m).
+    const int levels = max_depth + 1;
+    const int base = 1 << max_depth;
+    patch_ids_ = gl::Texture::create(GL_TEXTURE_2D);
+    patch_ids_.storage_2d(levels, GL_RGBA16UI, base, base);
+    std::vector<std::uint16_t> texels;
+    for (int m = 0; m < levels; ++m) {
+        const int size = base >> m;
+        texels.resize(std::size_t(size) * size * 4);
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                std::uint16_t* t = &texels[(std::size_t(y) * size + x) * 4];
+                t[0] = std::uint16_t(x), t[1] = std::uint16_t(y);
+                t[2] = std::uint16_t(max_depth - m), t[3] = 0;
+            }
+        glTextureSubImage2D(patch_ids_.id(), m, 0, 0, size, size, GL_RGBA_INTEGER,
+                            GL_UNSIGNED_SHORT, texels.data());
+    }
+    glTextureParameteri(patch_ids_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+    glTextureParameteri(patch_ids_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(patch_ids_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(patch_ids_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+
+    // One framebuffer large enough for the largest hemicube.
+    colour_ = gl::Texture::create(GL_TEXTURE_2D);
+    colour_.storage_2d(1, GL_RGBA32F, 2 * max_res_, max_res_ + max_res_ / 2);
+    depth_ = gl::Renderbuffer::create();
+    depth_.storage(GL_DEPTH_COMPONENT32F, 2 * max_res_, max_res_ + max_res_ / 2);
+    fbo_ = gl::Framebuffer::create();
+    fbo_.attach(GL_COLOR_ATTACHMENT0, colour_);
+    fbo_.attach(GL_DEPTH_ATTACHMENT, depth_);
+    fbo_.check_complete();
+
+    program_ = gl::link_program({"hemicube.vert", "hemicube.frag"});
+}
+
+void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layout,
+                              double lod_bias, bool builtin_acos) {
+    HEMIRAD_CHECK_LE(layout.res, max_res_);
+    const dvec3 N = shooter.normal;
+    const dvec3 c = shooter.geometry.centre;
+    // Tangent frame: T along the shooter's first edge.
+    dvec3 T = shooter.geometry.corners[1] - shooter.geometry.corners[0];
+    T = glm::normalize(T - glm::dot(T, N) * N);
+    const dvec3 B = glm::cross(N, T);
+    struct FaceView { dvec3 dir, up; };
+    const FaceView views[5] = {{N, B}, {T, N}, {-T, N}, {B, N}, {-B, N}};
+
+    // Near plane: far below any patch, above float noise.
+    const double near =
+        std::min(near_, 1e-3 * std::sqrt(std::max(shooter.geometry.area, 1e-300)));
+    const dvec3 eye = c - origin_;
+    const double eps = 1e-9 * scene_->bounds().diagonal();
+
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    glViewport(0, 0, layout.width, layout.height);
+    glDisable(GL_SCISSOR_TEST);
+    const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
+    glClearNamedFramebufferfi(fbo_.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
+    glUseProgram(program_.id());
+    glBindVertexArray(vao_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, polygons_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, acos_table_.id());
+    glBindTextureUnit(0, patch_ids_.id());
+    float corners[12] = {};
+    for (int k = 0; k < shooter.geometry.count; ++k) {
+        const dvec3 q = shooter.geometry.corners[k] - origin_;
+        corners[3 * k] = float(q.x), corners[3 * k + 1] = float(q.y), corners[3 * k + 2] = float(q.z);
+    }
+    glUniform3fv(2, 4, corners);
+    glUniform1i(6, shooter.geometry.count);
+    glUniform1f(7, float(lod_bias));
+    glUniform1i(8, builtin_acos ? 1 : 0);
+    glUniform1i(9, int(shooter.address.polygon));
+    glUniform3f(1, float(eye.x), float(eye.y), float(eye.z));
+
+    drawn_ = 0;
+    for (int f = 0; f < 5; ++f) {
+        const auto& face = layout.faces[f];
+        const FaceView& v = views[f];
+        const glm::dmat4 view = glm::lookAt(dvec3(0.0), v.dir, v.up);
+        const glm::mat4 proj = f == 0 ? reversed_z_frustum(-near, near, -near, near, near)
+                                      : reversed_z_frustum(-near, near, 0, near, near);
+        const glm::mat4 vp = proj * glm::mat4(view);
+        // Per-face culling: a polygon is skipped if all its corners lie outside one of the
+        // face's side planes (or behind the shooter's plane).
+        const dvec3 side = glm::cross(v.dir, v.up); // screen x
+        dvec3 planes[4] = {v.dir + side, v.dir - side, v.dir + v.up, v.dir - v.up};
+        if (f != 0) planes[2] = v.up; // the bottom of a side face is the shooter's plane
+        draw_first_.clear();
+        draw_count_.clear();
+        for (std::size_t i = 0; i < scene_->polygons.size(); ++i) {
+            if (i == shooter.address.polygon) continue;
+            const Polygon& p = scene_->polygons[i];
+            bool above = false;
+            for (int k = 0; k < p.count; ++k) above |= glm::dot(p.v[k] - c, N) > eps;
+            if (!above) continue;
+            bool outside = false;
+            for (const dvec3& pl : planes) {
+                bool all_out = true;
+                for (int k = 0; k < p.count && all_out; ++k)
+                    all_out = glm::dot(p.v[k] - c, pl) < -eps;
+                if (all_out) { outside = true; break; }
+            }
+            if (outside) continue;
+            draw_first_.push_back(first_[i]);
+            draw_count_.push_back(count_[i]);
+        }
+        if (draw_first_.empty()) continue;
+        drawn_ += draw_first_.size();
+        glViewport(face.x, face.y, face.w, face.h);
+        glUniformMatrix4fv(0, 1, GL_FALSE, glm::value_ptr(vp));
+        glMultiDrawArrays(GL_TRIANGLES, draw_first_.data(), draw_count_.data(),
+                          GLsizei(draw_first_.size()));
+    }
+    glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    glDepthFunc(GL_LESS);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void HemicubeRenderer::read_back(const HemicubeLayout& layout, std::vector<float>& rgba) {
+    rgba.resize(std::size_t(layout.width) * layout.height * 4);
+    glNamedFramebufferReadBuffer(fbo_.id(), GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, layout.width, layout.height, GL_RGBA, GL_FLOAT, rgba.data());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+}
+
+} // namespace hemirad::gpu

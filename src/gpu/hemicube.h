@@ -1,0 +1,66 @@
+// The GL side of the hemicube (paper 002 §2; Cohen & Greenberg 1985): five faces (one full,
+// four half) rendered into regions of one RGBA32F framebuffer and read back in one call.
+// The framebuffer holds, per pixel, the patch ID and the analytic form factor written by
+// shaders/hemicube.frag. No solver state here: the provider turns pixels into links.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "gl/objects.h"
+#include "hemirad/form_factors.h"
+#include "hemirad/scene.h"
+
+namespace hemirad::gpu {
+
+/// Where the faces of a hemicube of resolution `res` (pixels per full face side, even) lie in
+/// the framebuffer, and the delta form factor of every pixel (0 where no face is).
+///   top face  (0, 0)      res x res        sides (res, 0), (res, res/2), (0, res), (res, res)
+/// each res x res/2; the framebuffer region read back is 2res x 1.5res = 3 res^2 pixels.
+struct HemicubeLayout {
+    int res = 0;
+    int width = 0, height = 0;
+    struct Face { int x, y, w, h; };
+    Face faces[5];
+    /// Delta form factors per pixel, row 0 at the bottom (GL order): on the top face
+    /// dA / (pi (x^2 + y^2 + 1)^2), on a side face z dA / (pi (y^2 + z^2 + 1)^2); sum 1.
+    std::vector<float> delta_ff;
+};
+HemicubeLayout make_hemicube_layout(int res);
+
+class HemicubeRenderer {
+public:
+    /// Uploads the scene's polygons and the patch-ID mip texture (depth = max of `disc`).
+    /// Needs a current GL 4.5 context.
+    HemicubeRenderer(const Scene& scene, const Discretisation& disc, int max_resolution);
+
+    /// Renders the hemicube at the shooter's centre along its normal. Polygons wholly behind
+    /// the shooter's plane, and the shooter's own polygon, are not drawn; per face, polygons
+    /// outside the face's frustum are skipped on the CPU.
+    void render(const Shooter& shooter, const HemicubeLayout& layout, double lod_bias,
+                bool builtin_acos);
+    /// Reads the region of `layout` back: RGBA floats, row 0 at the bottom.
+    void read_back(const HemicubeLayout& layout, std::vector<float>& rgba);
+
+    int max_resolution() const { return max_res_; }
+    std::size_t polygons_drawn() const { return drawn_; } ///< over the five faces, last render
+
+private:
+    const Scene* scene_;
+    dvec3 origin_{0.0};   ///< scene centre: GL works in scene-local floats
+    double near_ = 0;     ///< near plane distance [scene units]
+    int max_res_ = 0;
+    std::vector<GLint> first_;   ///< first vertex of each polygon in the vertex buffer
+    std::vector<GLsizei> count_; ///< its vertex count (3 or 6)
+    std::vector<GLint> draw_first_;
+    std::vector<GLsizei> draw_count_;
+    std::size_t drawn_ = 0;
+    gl::Buffer vertices_, polygons_, acos_table_;
+    gl::VertexArray vao_;
+    gl::Texture patch_ids_, colour_;
+    gl::Renderbuffer depth_;
+    gl::Framebuffer fbo_;
+    gl::Program program_;
+};
+
+} // namespace hemirad::gpu

@@ -1,0 +1,239 @@
+// The GPU form-factor provider (paper 002): hemicube visibility with the mipmapped patch-ID
+// linking oracle, analytic form factors from the fragment shader, and the hybrid treatment
+// of partially occluded patches (§3.2). Modes:
+//   hemicube  classic pixel counting (Cohen & Greenberg 1985) at the mipmap linking
+//   analytic  the analytic value at every visible node (binary visibility)
+//   hybrid    analytic, except nodes with a fully occluded neighbour: pixel sum clamped to
+//             the analytic value
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "gpu/hemicube.h"
+#include "hemirad/error.h"
+#include "hemirad/gl/context.h"
+#include "hemirad/provider.h"
+
+namespace hemirad {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+enum class Mode { Hemicube, Analytic, Hybrid };
+
+void validate(const GpuProviderOptions& o) {
+    const auto check_res = [](int r, const char* name) {
+        if (r < 16 || r > 4096 || r % 2 != 0)
+            throw InputError(std::string(name) + " " + std::to_string(r) +
+                             " must be an even number in 16..4096");
+    };
+    if (o.resolution != 0) check_res(o.resolution, "--resolution");
+    check_res(o.min_resolution, "--min-resolution");
+    check_res(o.max_resolution, "--max-resolution");
+    if (o.min_resolution > o.max_resolution)
+        throw InputError("--min-resolution " + std::to_string(o.min_resolution) +
+                         " exceeds --max-resolution " + std::to_string(o.max_resolution));
+    if (!(std::abs(o.lod_bias) <= 16))
+        throw InputError("--lod-bias " + std::to_string(o.lod_bias) + " must be in -16..16");
+}
+
+class HemicubeProvider final : public FormFactorProvider {
+public:
+    HemicubeProvider(Mode mode, std::string name, const Scene& scene, const Discretisation& disc,
+                     const GpuProviderOptions& options)
+        : mode_(mode), name_(std::move(name)), scene_(&scene), disc_(disc), options_(options) {
+        validate(options);
+        if (!options.use_current_context) {
+            gl::ContextOptions co;
+            co.backend = gl::parse_backend(options.backend);
+            co.device = options.device;
+            context_ = gl::Context::create(co);
+        }
+        const int max_res = options.resolution ? options.resolution : options.max_resolution;
+        renderer_ = std::make_unique<gpu::HemicubeRenderer>(scene, disc, max_res);
+        base_.resize(scene.polygons.size());
+        std::uint64_t total = 0;
+        for (std::size_t p = 0; p < scene.polygons.size(); ++p) {
+            base_[p] = total;
+            total += tree_size(disc.depth[p]);
+        }
+        pixel_sum_.assign(total, 0.f);
+        analytic_.assign(total, 0.f);
+        seen_.assign(total, 0);
+        below_seen_.assign(total, 0);
+        area_.assign(total, -1.f);
+    }
+
+    std::string name() const override { return name_; }
+    std::vector<Timing> last_timings() const override { return timings_; }
+    double last_backface_fraction() const override { return backface_; }
+    std::string renderer_name() const { return context_ ? context_->renderer() : ""; }
+
+    void shoot(const Shooter& shooter, std::vector<Link>& links) override {
+        links.clear();
+        timings_.clear();
+        ++stamp_;
+        const gpu::HemicubeLayout& layout = layout_for(shooter);
+        auto t0 = Clock::now();
+        renderer_->render(shooter, layout, options_.lod_bias, options_.builtin_acos);
+        timings_.push_back({"render", since(t0)});
+        t0 = Clock::now();
+        renderer_->read_back(layout, pixels_);
+        timings_.push_back({"readback", since(t0)});
+        t0 = Clock::now();
+        reduce(shooter, layout, links);
+        timings_.push_back({"reduce", since(t0)});
+    }
+
+    /// Last hemicube read back (for the viewer's inset and for tests).
+    const std::vector<float>& pixels() const { return pixels_; }
+
+private:
+    const gpu::HemicubeLayout& layout_for(const Shooter& shooter) {
+        int res = options_.resolution;
+        if (res == 0) {
+            // Less unshot power, coarser cube (paper 002 §2): resolution scales with the square
+            // root of the shooter's power relative to the strongest shooter so far.
+            max_power_ = std::max(max_power_, shooter.unshot_power);
+            const double rel = max_power_ > 0 ? shooter.unshot_power / max_power_ : 1.0;
+            res = int(std::lround(options_.max_resolution * std::sqrt(rel) / 8.0)) * 8;
+            res = std::clamp(res, options_.min_resolution, options_.max_resolution);
+            res += res % 2;
+        }
+        auto it = std::find_if(layouts_.begin(), layouts_.end(),
+                               [res](const gpu::HemicubeLayout& l) { return l.res == res; });
+        if (it != layouts_.end()) return *it;
+        layouts_.push_back(gpu::make_hemicube_layout(res));
+        return layouts_.back();
+    }
+
+    std::uint64_t node_id(std::uint32_t p, std::uint32_t level, std::uint32_t index) const {
+        return base_[p] + level_offset(int(level)) + index;
+    }
+
+    float area(std::uint32_t p, std::uint32_t level, std::uint32_t index) {
+        float& a = area_[node_id(p, level, index)];
+        if (a < 0) a = float(patch_geometry(scene_->polygons[p], level, index).area);
+        return a;
+    }
+
+    // Fully occluded: in front of the shooter, yet neither it, nor an ancestor, nor a
+    // descendant was seen on the hemicube.
+    bool occluded(const Shooter& s, std::uint32_t p, std::uint32_t level, std::uint32_t index) {
+        const std::uint64_t id = node_id(p, level, index);
+        if (seen_[id] == stamp_ || below_seen_[id] == stamp_) return false;
+        const bool tri = scene_->polygons[p].is_triangle();
+        std::uint32_t l = level, i = index;
+        while (l > 0) {
+            i = patch_parent(tri, l, i);
+            --l;
+            if (seen_[node_id(p, l, i)] == stamp_) return false;
+        }
+        const PatchGeometry g = patch_geometry(scene_->polygons[p], level, index);
+        if (glm::dot(g.centre - s.geometry.centre, s.normal) <= 0) return false;
+        const dvec3 to_shooter = s.geometry.centre - g.centre;
+        if (glm::dot(scene_->polygons[p].normal, to_shooter) <= 0) return false;
+        return true;
+    }
+
+    void reduce(const Shooter& shooter, const gpu::HemicubeLayout& layout,
+                std::vector<Link>& links) {
+        touched_.clear();
+        double backface = 0;
+        const std::size_t n = std::size_t(layout.width) * layout.height;
+        for (std::size_t i = 0; i < n; ++i) {
+            const float* px = &pixels_[4 * i];
+            if (px[2] < 0.5f) {
+                if (px[2] < -0.5f) backface += layout.delta_ff[i];
+                continue;
+            }
+            const auto p = std::uint32_t(px[2]) - 1;
+            const auto level = std::uint32_t(px[1]);
+            const auto index = std::uint32_t(px[0]);
+            const std::uint64_t id = node_id(p, level, index);
+            if (seen_[id] != stamp_) {
+                seen_[id] = stamp_;
+                pixel_sum_[id] = 0;
+                analytic_[id] = px[3];
+                touched_.push_back({p, level, index});
+            }
+            pixel_sum_[id] += layout.delta_ff[i];
+        }
+        backface_ = backface;
+        if (mode_ == Mode::Hybrid) {
+            // Mark the ancestors of every seen node: "something below was seen".
+            for (const PatchAddress& a : touched_) {
+                const bool tri = scene_->polygons[a.polygon].is_triangle();
+                std::uint32_t l = a.level, i = a.index;
+                while (l > 0) {
+                    i = patch_parent(tri, l, i);
+                    --l;
+                    std::uint32_t& b = below_seen_[node_id(a.polygon, l, i)];
+                    if (b == stamp_) break;
+                    b = stamp_;
+                }
+            }
+        }
+        const double area_s = shooter.geometry.area;
+        links.reserve(touched_.size());
+        for (const PatchAddress& a : touched_) {
+            const std::uint64_t id = node_id(a.polygon, a.level, a.index);
+            const double area_j = area(a.polygon, a.level, a.index);
+            Link l;
+            l.receiver = a;
+            l.ff_analytic = analytic_[id];
+            // F(S->j) from the pixels, then reciprocity: F(j->S) = F(S->j) A_S / A_j.
+            l.ff_pixel = float(double(pixel_sum_[id]) * area_s / area_j);
+            switch (mode_) {
+            case Mode::Hemicube: l.ff = l.ff_pixel; break;
+            case Mode::Analytic: l.ff = l.ff_analytic; break;
+            case Mode::Hybrid: {
+                const bool tri = scene_->polygons[a.polygon].is_triangle();
+                for (std::uint32_t nb : patch_neighbours(tri, a.level, a.index)) {
+                    if (nb == UINT32_MAX) continue;
+                    if (occluded(shooter, a.polygon, a.level, nb)) {
+                        l.partial = true;
+                        break;
+                    }
+                }
+                l.ff = l.partial ? std::min(l.ff_pixel, l.ff_analytic) : l.ff_analytic;
+                break;
+            }
+            }
+            if (l.ff > 0) links.push_back(l);
+        }
+    }
+
+    Mode mode_;
+    std::string name_;
+    const Scene* scene_;
+    Discretisation disc_;
+    GpuProviderOptions options_;
+    std::unique_ptr<gl::Context> context_;
+    std::unique_ptr<gpu::HemicubeRenderer> renderer_;
+    std::vector<gpu::HemicubeLayout> layouts_;
+    std::vector<std::uint64_t> base_;
+    std::vector<float> pixels_, pixel_sum_, analytic_, area_;
+    std::vector<std::uint32_t> seen_, below_seen_;
+    std::vector<PatchAddress> touched_;
+    std::vector<Timing> timings_;
+    std::uint32_t stamp_ = 0;
+    double max_power_ = 0;
+    double backface_ = 0;
+};
+
+} // namespace
+
+std::unique_ptr<FormFactorProvider> make_hemicube_provider(const std::string& mode,
+                                                           const Scene& scene,
+                                                           const Discretisation& disc,
+                                                           const GpuProviderOptions& options) {
+    const Mode m = mode == "hemicube" ? Mode::Hemicube
+                   : mode == "analytic" ? Mode::Analytic
+                                        : Mode::Hybrid;
+    return std::make_unique<HemicubeProvider>(m, mode, scene, disc, options);
+}
+
+} // namespace hemirad
