@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "hemirad/error.h"
+#include "hemirad/gl/context.h"
 #include "hemirad/json.h"
 #include "hemirad/readout.h"
 #include "hemirad/solver.h"
@@ -113,6 +114,18 @@ int cmd_solve(int argc, char** argv) {
     print_warnings(scene, quiet);
     const std::vector<Probe> probes = probes_in.empty() ? std::vector<Probe>{}
                                                         : read_probes(probes_in);
+    // One GL context for the whole run: the GPU provider and the image outputs share it.
+    std::unique_ptr<gl::Context> context;
+    if (is_gpu_provider(so.ff) || out.needs_gl()) {
+        gl::ContextOptions co;
+        co.backend = gl::parse_backend(so.provider.gpu.backend);
+        co.device = so.provider.gpu.device;
+        context = gl::Context::create(co);
+        so.provider.gpu.use_current_context = true;
+        if (!quiet)
+            std::fprintf(stderr, "hemirad: OpenGL %s: %s (%s)\n", context->backend_name().c_str(),
+                         context->renderer().c_str(), context->vendor().c_str());
+    }
     Solver solver(scene, so);
     if (!quiet) {
         std::fprintf(stderr, "hemirad: %s: %zu polygons, %llu leaf patches, form factors: %s\n",

@@ -13,6 +13,7 @@ namespace hemirad::cli {
 /// Image and export outputs of a solve.
 struct OutputOptions {
     std::vector<std::string> images; ///< -o FILE.png / FILE.exr
+    bool needs_gl() const { return !images.empty(); }
 };
 void add_output_options(ArgParser& args, OutputOptions& o);
 void validate_output_options(const OutputOptions& o);
