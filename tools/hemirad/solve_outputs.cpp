@@ -19,17 +19,12 @@ void install_interrupt_handler() {
 
 bool interrupted() { return g_interrupted != 0; }
 
-void add_output_options(ArgParser& args, OutputOptions& o) {
-    (void)args;
-    (void)o;
-}
+void add_output_options(ArgParser& args, OutputOptions& o) { add_image_options(args, o.images); }
 
-void validate_output_options(const OutputOptions& o) { (void)o; }
+void validate_output_options(const OutputOptions& o) { validate_image_options(o.images); }
 
 void write_outputs(const OutputOptions& o, Solver& solver, bool quiet) {
-    (void)o;
-    (void)solver;
-    (void)quiet;
+    write_image_outputs(o.images, solver, quiet);
 }
 
 void write_report(const std::string& path, Solver& solver, const Scene& scene) {

@@ -7,13 +7,14 @@
 #include "hemirad/args.h"
 #include "hemirad/report.h"
 #include "hemirad/solver.h"
+#include "image_outputs.h"
 
 namespace hemirad::cli {
 
 /// Image and export outputs of a solve.
 struct OutputOptions {
-    std::vector<std::string> images; ///< -o FILE.png / FILE.exr
-    bool needs_gl() const { return !images.empty(); }
+    ImageOutputOptions images;
+    bool needs_gl() const { return image_outputs_need_gl(images); }
 };
 void add_output_options(ArgParser& args, OutputOptions& o);
 void validate_output_options(const OutputOptions& o);
