@@ -1,0 +1,156 @@
+// The progressive solver on the CPU reference provider: analytic whole-solution cases
+// (REFERENCES.md §2), energy bookkeeping on every shot, and agreement with the matrix solver.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hemirad/matrix_solver.h"
+#include "hemirad/provider.h"
+#include "hemirad/scene_io.h"
+#include "hemirad/solver.h"
+
+using namespace hemirad;
+
+namespace {
+
+SolverOptions cpu_options(double tolerance, int max_depth) {
+    SolverOptions o;
+    o.ff = "reference";
+    o.tolerance = tolerance;
+    o.hierarchy.max_depth = max_depth;
+    o.hierarchy.patch_size = 1e-9; // always the maximum depth
+    return o;
+}
+
+// Furnace (closed box, every face E = 1 and rho): B = E/(1 - rho) exactly for row sums of 1.
+// The bound guarantees |B - B*|_1 <= tol * Phi: with tol 1e-3 every leaf must be within a
+// few 1e-3 (the leaves near edges carry the largest form-factor error of the midpoint rule).
+class Furnace : public ::testing::TestWithParam<double> {};
+
+TEST_P(Furnace, ConvergesToEOverOneMinusRho) {
+    const double rho = GetParam();
+    BuiltinOptions bo;
+    bo.rho = rho;
+    const Scene scene = make_builtin("furnace", bo);
+    Solver s(scene, cpu_options(1e-3, 2));
+    while (s.step()) {}
+    ASSERT_TRUE(s.converged());
+    const Hierarchy& h = s.solution();
+    const double expected = 1.0 / (1.0 - rho);
+    double worst = 0, weighted = 0, area = 0;
+    for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
+        for (std::uint32_t i = 0; i < 16; ++i) {
+            const PatchAddress a{p, 2, i};
+            const double B = h.radiosity(a).x;
+            worst = std::max(worst, std::abs(B / expected - 1));
+            weighted += B * h.node(a).area;
+            area += h.node(a).area;
+        }
+    EXPECT_LT(std::abs(weighted / area / expected - 1), 0.005) << "area-average radiosity";
+    EXPECT_LT(worst, 0.01) << "worst leaf";
+}
+
+INSTANTIATE_TEST_SUITE_P(Reflectances, Furnace, ::testing::Values(0.3, 0.5, 0.8));
+
+// Energy: after every shot absorbed + escaped + unshot = emitted, and unshot never grows.
+TEST(SolverEnergy, BalancedAfterEveryShotAndUnshotDecreases) {
+    BuiltinOptions bo;
+    bo.rho = 0.7;
+    bo.subdiv = 2;
+    const Scene scene = make_builtin("cube", bo);
+    Solver s(scene, cpu_options(1e-4, 2));
+    const dvec3 phi = s.emitted_power();
+    double previous = 1e300;
+    int shots = 0;
+    while (s.step() && shots < 300) {
+        ++shots;
+        const dvec3 u = s.last_shot().unshot;
+        const dvec3 total = s.absorbed_power() + s.escaped_power() + u;
+        EXPECT_NEAR(total.x, phi.x, 1e-5 * phi.x) << "shot " << shots;
+        const double sum = u.x + u.y + u.z;
+        EXPECT_LE(sum, previous * (1 + 1e-9)) << "shot " << shots;
+        previous = sum;
+        // Closed cube: the reference provider's rows sum to 1 within its midpoint-rule error.
+        EXPECT_NEAR(s.last_shot().row_sum, 1.0, 0.02) << "shot " << shots;
+    }
+    EXPECT_GT(shots, 10);
+    // Closed scene: (almost) nothing escapes.
+    EXPECT_LT(s.escaped_power().x, 0.01 * phi.x);
+}
+
+// Progressive shooting with leaf-to-leaf links solves the same linear system as the matrix
+// solver; it must agree within the bound it reports: |B - B*|_1 <= bound * Phi.
+TEST(SolverVsMatrix, ProgressiveAgreesWithGaussSeidelWithinItsBound) {
+    BuiltinOptions bo;
+    bo.subdiv = 2;
+    bo.rho = 0.6;
+    const Scene scene = make_builtin("cube", bo);
+    SolverOptions o = cpu_options(1e-4, 1);
+    o.flat = true;
+    const Discretisation disc = discretise(scene, o.hierarchy);
+    auto provider = make_provider("reference", scene, disc, o.provider);
+    provider->set_link_at_leaves(true);
+    Solver s(scene, o, std::move(provider));
+    while (s.step()) {}
+    ASSERT_TRUE(s.converged());
+    const Hierarchy& h = s.solution();
+    auto reference = make_provider("reference", scene, disc, o.provider);
+    const MatrixSolution m = solve_matrix(scene, disc, *reference, 1e-12);
+    ASSERT_LT(m.residual, 1e-10);
+    double diff = 0;
+    for (std::size_t k = 0; k < m.leaves.size(); ++k) {
+        const dvec3 d = h.radiosity(m.leaves[k]) - m.B[k];
+        diff += (std::abs(d.x) + std::abs(d.y) + std::abs(d.z)) / 3 * h.node(m.leaves[k]).area;
+    }
+    const double bound = s.error_bound() * s.emitted_power().x;
+    EXPECT_LE(diff, bound) << "L1 difference " << diff << " vs bound " << bound;
+    EXPECT_GT(diff, 0.0); // the progressive solution is not yet exact: the bound is tested
+}
+
+// The hierarchy (greedy shooting from coarse nodes, adaptive linking) converges to the same
+// solution as leaf-level shooting, up to its discretisation error (a few percent locally).
+TEST(SolverVsMatrix, HierarchicalShootingIsCloseToMatrixSolution) {
+    BuiltinOptions bo;
+    bo.subdiv = 1;
+    bo.rho = 0.5;
+    const Scene scene = make_builtin("cube", bo);
+    SolverOptions o = cpu_options(1e-4, 3);
+    Solver s(scene, o);
+    while (s.step()) {}
+    const Hierarchy& h = s.solution();
+    const Discretisation disc = discretise(scene, o.hierarchy);
+    auto reference = make_provider("reference", scene, disc, o.provider);
+    const MatrixSolution m = solve_matrix(scene, disc, *reference, 1e-12);
+    double diff = 0, total = 0;
+    for (std::size_t k = 0; k < m.leaves.size(); ++k) {
+        diff += std::abs(h.radiosity(m.leaves[k]).x - m.B[k].x) * h.node(m.leaves[k]).area;
+        total += m.B[k].x * h.node(m.leaves[k]).area;
+    }
+    EXPECT_LT(diff / total, 0.02);
+}
+
+TEST(SolverOptions, BadValuesAreInputErrors) {
+    const Scene scene = make_builtin("furnace");
+    SolverOptions o = cpu_options(0.01, 1);
+    o.tolerance = 0;
+    EXPECT_ANY_THROW(Solver(scene, o));
+    o = cpu_options(0.01, 1);
+    o.ff = "magic";
+    EXPECT_ANY_THROW(Solver(scene, o));
+    o = cpu_options(0.01, 1);
+    o.shooter_power_fraction = 2;
+    EXPECT_ANY_THROW(Solver(scene, o));
+}
+
+TEST(SolverStops, MaxShotsAndNoEmitter) {
+    const Scene scene = make_builtin("cornell");
+    SolverOptions o = cpu_options(1e-6, 2);
+    o.max_shots = 3;
+    Solver s(scene, o);
+    int n = 0;
+    while (s.step()) ++n;
+    EXPECT_EQ(n, 3);
+    EXPECT_EQ(s.stop_reason(), StopReason::MaxShots);
+}
+
+} // namespace
