@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "hemirad/form_factors.h"
 #include "hemirad/scene.h"
@@ -33,5 +34,21 @@ std::unique_ptr<FormFactorProvider> make_provider(const std::string& name, const
                                                   const ProviderOptions& options);
 const char* provider_names();
 bool is_gpu_provider(const std::string& name);
+
+} // namespace hemirad
+
+namespace hemirad {
+
+/// Form factors from one surface group to every group (paper 000's experiment): shoots from
+/// every leaf patch of every polygon of `group` and sums, by reciprocity,
+/// F(G -> H) = sum over shooters s in G, receivers j in H of A_j F(j -> s) / A_G.
+struct GroupFormFactors {
+    std::vector<double> to; ///< per group of the scene
+    double row_sum = 0;     ///< sum of `to` (1 in a closed scene)
+    double seconds = 0;
+    long shots = 0;
+};
+GroupFormFactors group_form_factors(const Scene& scene, const Discretisation& disc,
+                                    FormFactorProvider& provider, std::uint32_t group);
 
 } // namespace hemirad

@@ -1,12 +1,9 @@
 // hemirad formfactors: the form factor from one surface group to every group (paper 000).
-#include <chrono>
 #include <cstdio>
 #include <iostream>
-#include <map>
 
 #include "commands.h"
 #include "hemirad/error.h"
-#include "hemirad/hierarchy.h"
 #include "hemirad/json.h"
 #include "hemirad/provider.h"
 
@@ -53,37 +50,9 @@ int cmd_formfactors(int argc, char** argv) {
     const Discretisation disc = discretise(scene, ho);
     auto provider = make_provider(ff, scene, disc, po);
     provider->set_link_at_leaves(leaves);
-    const Hierarchy layout(scene, disc);
-
-    const auto t0 = std::chrono::steady_clock::now();
-    std::vector<double> to(scene.groups.size(), 0.0);
-    double area_from = 0;
-    std::vector<Link> links;
-    for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
-        const Polygon& poly = scene.polygons[p];
-        if (int(poly.group) != g_from) continue;
-        area_from += poly.area;
-        const std::uint32_t level = disc.depth[p];
-        for (std::uint32_t i = 0; i < (1u << (2 * level)); ++i) {
-            Shooter s;
-            s.address = {p, level, i};
-            s.geometry = patch_geometry(poly, level, i);
-            s.normal = poly.normal;
-            s.unshot_power = 1;
-            provider->shoot(s, links);
-            // A_s F(s->j) = A_j F(j->s): sum receiver-side values weighted by receiver area.
-            for (const Link& l : links)
-                to[scene.polygons[l.receiver.polygon].group] +=
-                    double(l.ff) * double(layout.node(l.receiver).area);
-        }
-    }
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    double row = 0;
-    for (double& f : to) {
-        f /= area_from;
-        row += f;
-    }
+    const GroupFormFactors r = group_form_factors(scene, disc, *provider, std::uint32_t(g_from));
+    const std::vector<double>& to = r.to;
+    const double row = r.row_sum, seconds = r.seconds;
     if (json) {
         Json j = Json::object();
         j["from"] = from;

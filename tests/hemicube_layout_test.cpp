@@ -1,0 +1,56 @@
+// Hemicube delta form factors (Cohen & Greenberg 1985): no GL needed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gpu/acos_table.h"
+#include "gpu/hemicube.h"
+
+using namespace hemirad;
+
+// The delta form factors of the five faces sum to the whole hemisphere, 1, up to the
+// midpoint rule's O(1/res^2) error.
+TEST(HemicubeLayout, DeltaFormFactorsSumToOne) {
+    double previous_error = 1;
+    for (int res : {32, 64, 128, 256}) {
+        const gpu::HemicubeLayout L = gpu::make_hemicube_layout(res);
+        EXPECT_EQ(L.width * L.height, 3 * res * res);
+        double sum = 0;
+        for (float w : L.delta_ff) sum += w;
+        const double error = std::abs(sum - 1);
+        EXPECT_LT(error, 2.0 / (res * res)) << "res " << res;
+        EXPECT_LT(error, previous_error) << "res " << res;
+        previous_error = error;
+    }
+}
+
+// The top face alone: the form factor of a 90-degree square cone, 4 * B-3(1,1,1) seen from
+// a point at distance 1 under a 2x2 square = 0.5541264 (REFERENCES.md §1(c1), element
+// under the centre of a square: 4 B-3(a/2, b/2, c)).
+TEST(HemicubeLayout, TopFaceIsTheCentredSquare) {
+    const gpu::HemicubeLayout L = gpu::make_hemicube_layout(256);
+    double top = 0;
+    for (int y = 0; y < L.faces[0].h; ++y)
+        for (int x = 0; x < L.faces[0].w; ++x) top += L.delta_ff[std::size_t(y) * L.width + x];
+    const auto b3 = [](double X, double Y) {
+        return (X / std::sqrt(1 + X * X) * std::atan(Y / std::sqrt(1 + X * X)) +
+                Y / std::sqrt(1 + Y * Y) * std::atan(X / std::sqrt(1 + Y * Y))) /
+               (2 * M_PI);
+    };
+    EXPECT_NEAR(top, 4 * b3(1, 1), 1e-5);
+}
+
+// The arccos table: its error over [-1, 1], small-angle accuracy where it matters.
+TEST(AcosTable, ErrorIsSmallAndShrinksNearOne) {
+    const std::vector<float> table = gpu::make_acos_table();
+    ASSERT_EQ(table.size(), 2048u);
+    double worst = 0, worst_small = 0;
+    for (int i = 0; i <= 200000; ++i) {
+        const double x = -1 + 2.0 * i / 200000;
+        const double e = std::abs(double(gpu::table_acos(table, float(x))) - std::acos(double(float(x))));
+        worst = std::max(worst, e);
+        if (x > 0.999) worst_small = std::max(worst_small, e / std::acos(double(float(x)) + 1e-30));
+    }
+    EXPECT_LT(worst, 2e-6) << "absolute error over [-1,1]";
+    EXPECT_LT(worst_small, 1e-3) << "relative error for angles under 2.6 degrees";
+}
