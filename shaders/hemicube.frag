@@ -27,26 +27,30 @@ layout(binding = 0) uniform usampler2D patch_ids; // texel (x,y) of mip m: (x, y
 layout(location = 2) uniform vec3 shooter[4];      // shooter corners, scene-local
 layout(location = 6) uniform int shooter_count;    // 3 or 4
 layout(location = 7) uniform float lod_bias;
-layout(location = 8) uniform int use_builtin_acos; // 1: GLSL acos; 0: the lookup table
+layout(location = 8) uniform int angle_method; // 0: lookup table, 1: GLSL acos, 2: GLSL atan
 layout(location = 9) uniform int shooter_polygon;
 
 const float PI = 3.14159265358979;
 
-// arccos from a table over s = sqrt(1 - |x|) in [0,1] (2048 entries, linear interpolation).
-// acos(1 - s^2) is nearly linear in s near s = 0, where receivers far from the shooter land,
-// so the table is precise exactly where a uniform one is worst (paper 002 §3.1 uses x^4).
-float table_acos(float x) {
-    float ax = min(abs(x), 1.0);
-    float s = sqrt(1.0 - ax) * float(acos_table.length() - 1);
-    int i = min(int(s), acos_table.length() - 2);
-    float f = s - float(i);
-    float a = mix(acos_table[i], acos_table[i + 1], f);
-    return x >= 0.0 ? a : PI - a;
+// The angle between unit vectors a and b (paper 002 §3.1: an arccos lookup table).
+// The table holds acos(1 - s^2) at s = i/2047, uniform in s = sqrt(1 - x) with x = cos(angle),
+// so entries crowd near x = 1 (small angles: far or small shooters), where acos is steepest.
+// The index s is taken from the chord, sqrt(1 - a.b) = |a - b| / sqrt(2), rather than from
+// a.b itself: near x = 1 a float dot product has lost the digits that the angle lives in
+// (a 0.02 rad angle has 1 - x = 2e-4, known to 3e-4 relative in float).
+float table_angle(vec3 a, vec3 b) {
+    float x = dot(a, b);
+    float s = (x >= 0.0 ? length(a - b) : length(a + b)) * 0.70710678;
+    float t = min(s, 1.0) * float(acos_table.length() - 1);
+    int i = min(int(t), acos_table.length() - 2);
+    float angle = mix(acos_table[i], acos_table[i + 1], t - float(i));
+    return x >= 0.0 ? angle : PI - angle;
 }
 
 float angle_between(vec3 a, vec3 b) {
-    float c = clamp(dot(a, b), -1.0, 1.0);
-    return use_builtin_acos != 0 ? acos(c) : table_acos(c);
+    if (angle_method == 1) return acos(clamp(dot(a, b), -1.0, 1.0));
+    if (angle_method == 2) return atan(length(cross(a, b)), dot(a, b));
+    return table_angle(a, b);
 }
 
 // F(dA -> shooter polygon) at point p with unit normal n, the shooter clipped to the

@@ -40,17 +40,22 @@ TEST(HemicubeLayout, TopFaceIsTheCentredSquare) {
     EXPECT_NEAR(top, 4 * b3(1, 1), 1e-5);
 }
 
-// The arccos table: its error over [-1, 1], small-angle accuracy where it matters.
-TEST(AcosTable, ErrorIsSmallAndShrinksNearOne) {
+// The arccos table as the shader uses it (indexed by the chord between unit vectors): its
+// error over all angles, and relative to the angle for small ones (far or small shooters).
+TEST(AcosTable, ErrorIsSmallAndRelativelySmallForSmallAngles) {
     const std::vector<float> table = gpu::make_acos_table();
     ASSERT_EQ(table.size(), 2048u);
     double worst = 0, worst_small = 0;
-    for (int i = 0; i <= 200000; ++i) {
-        const double x = -1 + 2.0 * i / 200000;
-        const double e = std::abs(double(gpu::table_acos(table, float(x))) - std::acos(double(float(x))));
+    for (int i = 0; i <= 100000; ++i) {
+        const double angle = M_PI * i / 100000;
+        const float a[3] = {1, 0, 0};
+        const float b[3] = {float(std::cos(angle)), float(std::sin(angle)), 0};
+        // The angle of the float vectors, in double.
+        const double exact = std::atan2(double(b[1]), double(b[0]));
+        const double e = std::abs(double(gpu::table_angle(table, a, b)) - exact);
         worst = std::max(worst, e);
-        if (x > 0.999) worst_small = std::max(worst_small, e / std::acos(double(float(x)) + 1e-30));
+        if (angle > 1e-4 && angle < 0.05) worst_small = std::max(worst_small, e / exact);
     }
-    EXPECT_LT(worst, 2e-6) << "absolute error over [-1,1]";
-    EXPECT_LT(worst_small, 1e-3) << "relative error for angles under 2.6 degrees";
+    EXPECT_LT(worst, 1e-5) << "absolute error [rad] over [0, pi]";
+    EXPECT_LT(worst_small, 1e-5) << "relative error for angles under 3 degrees";
 }

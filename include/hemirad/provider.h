@@ -18,6 +18,7 @@ struct GpuProviderOptions {
     int max_resolution = 256;    ///< adaptive: resolution for the strongest shooters (16..4096)
     double lod_bias = 0.0;       ///< added to the mip level chosen by GL (+1 = patches 2x larger)
     bool builtin_acos = false;   ///< use GLSL acos instead of the 2048-entry lookup table
+    bool atan_angle = false;     ///< use GLSL atan(|a x b|, a.b) (most precise); wins over both
     std::string backend = "auto"; ///< GL context backend: auto, egl, osmesa
     bool use_current_context = false; ///< render in the caller's current GL context (viewer)
     int device = -1;             ///< EGL device index (-1 = default)

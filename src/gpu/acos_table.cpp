@@ -15,13 +15,17 @@ std::vector<float> make_acos_table(int size) {
     return t;
 }
 
-float table_acos(const std::vector<float>& table, float x) {
-    const float ax = std::min(std::abs(x), 1.0f);
-    const float s = std::sqrt(1.0f - ax) * float(table.size() - 1);
-    const int i = std::min(int(s), int(table.size()) - 2);
-    const float f = s - float(i);
-    const float a = table[std::size_t(i)] + f * (table[std::size_t(i) + 1] - table[std::size_t(i)]);
-    return x >= 0 ? a : float(std::numbers::pi) - a;
+float table_angle(const std::vector<float>& table, const float a[3], const float b[3]) {
+    const float x = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    const float sign = x >= 0 ? -1.0f : 1.0f;
+    const float d0 = a[0] + sign * b[0], d1 = a[1] + sign * b[1], d2 = a[2] + sign * b[2];
+    const float s = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) * 0.70710678f;
+    const float t = std::min(s, 1.0f) * float(table.size() - 1);
+    const int i = std::min(int(t), int(table.size()) - 2);
+    const float f = t - float(i);
+    const float angle =
+        table[std::size_t(i)] + f * (table[std::size_t(i) + 1] - table[std::size_t(i)]);
+    return x >= 0 ? angle : float(std::numbers::pi) - angle;
 }
 
 } // namespace hemirad::gpu

@@ -12,7 +12,8 @@ constexpr int kAcosTableSize = 2048;
 /// which concentrates entries near x = 1 (small angles, far receivers).
 std::vector<float> make_acos_table(int size = kAcosTableSize);
 
-/// The shader's lookup (hemicube.frag, table_acos) in float, for error measurement.
-float table_acos(const std::vector<float>& table, float x);
+/// The shader's lookup (hemicube.frag, table_angle) in float, for error measurement: the
+/// angle between unit vectors a and b, indexed by the chord |a -+ b| / sqrt(2).
+float table_angle(const std::vector<float>& table, const float a[3], const float b[3]);
 
 } // namespace hemirad::gpu

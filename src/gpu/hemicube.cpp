@@ -173,7 +173,7 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
 }
 
 void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layout,
-                              double lod_bias, bool builtin_acos) {
+                              double lod_bias, int angle_method) {
     HEMIRAD_CHECK_LE(layout.res, max_res_);
     const dvec3 N = shooter.normal;
     const dvec3 c = shooter.geometry.centre;
@@ -214,7 +214,7 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
     glUniform3fv(2, 4, corners);
     glUniform1i(6, shooter.geometry.count);
     glUniform1f(7, float(lod_bias));
-    glUniform1i(8, builtin_acos ? 1 : 0);
+    glUniform1i(8, angle_method);
     glUniform1i(9, int(shooter.address.polygon));
     glUniform3f(1, float(eye.x), float(eye.y), float(eye.z));
 

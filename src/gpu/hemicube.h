@@ -37,8 +37,9 @@ public:
     /// Renders the hemicube at the shooter's centre along its normal. Polygons wholly behind
     /// the shooter's plane, and the shooter's own polygon, are not drawn; per face, polygons
     /// outside the face's frustum are skipped on the CPU.
+    /// angle_method: 0 the arccos table, 1 GLSL acos, 2 GLSL atan (hemicube.frag).
     void render(const Shooter& shooter, const HemicubeLayout& layout, double lod_bias,
-                bool builtin_acos);
+                int angle_method);
     /// Reads the region of `layout` back: RGBA floats, row 0 at the bottom.
     void read_back(const HemicubeLayout& layout, std::vector<float>& rgba);
 

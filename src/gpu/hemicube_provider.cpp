@@ -69,6 +69,14 @@ public:
     std::string name() const override { return name_; }
     std::vector<Timing> last_timings() const override { return timings_; }
     double last_backface_fraction() const override { return backface_; }
+    /// The adaptive resolution depends on the strongest shooter so far: {max_power_}.
+    std::vector<double> save_state() const override { return {max_power_}; }
+    void restore_state(const std::vector<double>& state) override {
+        if (state.size() != 1 || !std::isfinite(state[0]) || state[0] < 0)
+            throw InputError("GPU provider state: expected 1 finite value >= 0 (max shooter "
+                             "power), got " + std::to_string(state.size()) + " values");
+        max_power_ = state[0];
+    }
     std::string renderer_name() const { return context_ ? context_->renderer() : ""; }
 
     void shoot(const Shooter& shooter, std::vector<Link>& links) override {
@@ -77,7 +85,8 @@ public:
         ++stamp_;
         const gpu::HemicubeLayout& layout = layout_for(shooter);
         auto t0 = Clock::now();
-        renderer_->render(shooter, layout, options_.lod_bias, options_.builtin_acos);
+        const int angle = options_.atan_angle ? 2 : options_.builtin_acos ? 1 : 0;
+        renderer_->render(shooter, layout, options_.lod_bias, angle);
         timings_.push_back({"render", since(t0)});
         t0 = Clock::now();
         renderer_->read_back(layout, pixels_);

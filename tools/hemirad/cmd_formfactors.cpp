@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "hemirad/error.h"
+#include "hemirad/hierarchy.h"
 #include "hemirad/json.h"
 #include "hemirad/provider.h"
 
@@ -29,6 +30,7 @@ int cmd_formfactors(int argc, char** argv) {
     args.option("--resolution", &po.gpu.resolution, "N", "GPU: hemicube resolution (0 = 512)");
     args.option("--lod-bias", &po.gpu.lod_bias, "B", "GPU: mip LOD bias");
     args.flag("--builtin-acos", &po.gpu.builtin_acos, "GPU: GLSL acos instead of the table");
+    args.flag("--atan-angle", &po.gpu.atan_angle, "GPU: GLSL atan(|a x b|, a.b) for angles");
     args.option("--backend", &po.gpu.backend, "NAME", "GL backend: auto, egl, osmesa");
     args.option("--sr-rays", &po.cpu.sr_rays, "N", "sr: rays per sample point");
     args.option("--sr-points", &po.cpu.sr_points, "N", "sr: sample points per shooter");
