@@ -1,6 +1,11 @@
 // Rendering a solution through a camera (OpenGL, in the current context): each polygon shows
 // its leaf radiosity, reconstructed smoothly or flat per patch, into a linear float image.
 // Used by `hemirad solve -o`, the preview tool and the viewer alike.
+//
+// Pixel values are the displayed quantity itself, unscaled: radiosity B [W unit^-2] (or
+// irradiance E [W unit^-2] with Quantity::Irradiance). The radiance of a diffuse surface is
+// B / pi; we keep B so that an image pixel and a report number are the same quantity.
+// The back of a polygon (which emits and reflects nothing) shows as 0 (black).
 #pragma once
 
 #include <memory>
@@ -13,21 +18,43 @@
 namespace hemirad {
 
 struct RenderOptions {
-    int width = 512, height = 512;  ///< image size [pixels] (16..8192)
-    enum class Shading { Smooth, Flat } shading = Shading::Smooth; ///< Smooth: see render.cpp
-    bool patch_edges = false;       ///< overlay the leaf patch edges
-    /// Add rho * ambient to the radiosity (Cohen et al. 1988), for unconverged solutions.
+    int width = 512, height = 512;  ///< image size [pixels] (16..8192); render() only
+    /// Smooth (default): area-weighted nodal averaging, interpolated (see solution_renderer.cpp).
+    /// Flat: every leaf patch shows its own value.
+    enum class Shading { Smooth, Flat } shading = Shading::Smooth;
+    bool patch_edges = false;       ///< overlay the leaf patch edges (darkened, ~1 pixel wide)
+    /// Add rho * ambient to the radiosity (Cohen et al. 1988), for unconverged solutions;
+    /// with Quantity::Irradiance the ambient irradiance itself is added. Display only.
     bool ambient = false;
     dvec3 ambient_irradiance{0.0};  ///< Solver::ambient_irradiance(), used when ambient is on
     enum class Quantity { Radiosity, Irradiance } quantity = Quantity::Radiosity;
-    dvec3 background{0.0};          ///< where no surface is
+    dvec3 background{0.0};          ///< where no surface is (written as is, not scaled)
+    /// Display helpers for draw() into a window (the viewer); render() for files keeps the
+    /// defaults, which give physical values. Every value is multiplied by `scale` (> 0,
+    /// default 1); then, if `tone_map`, extended Reinhard on luminance (white point
+    /// kReinhardWhite, as tone_map() in image.h) and the sRGB transfer function are applied
+    /// in the shader, for an 8-bit non-sRGB window framebuffer.
+    double scale = 1.0;
+    bool tone_map = false;
 };
 
-/// Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fov" (fov: vertical, degrees). InputError if malformed.
+/// Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fov" (fov: vertical, degrees, in (0, 180)). Throws
+/// InputError naming the bad value (wrong count, not a number, eye == target, up parallel to
+/// the view direction, fov out of range).
 Camera parse_camera(const std::string& text);
 
+/// The scene's default view: scene.cameras[0], or, if it has none, a camera on the -z side of
+/// the bounding box looking at its centre (+z), y up, 40 degrees, framing the whole box.
+Camera default_camera(const Scene& scene);
+
 /// GL resources for drawing one scene's solution; needs a current GL 4.5 context (create a
-/// gl::Context first, or run inside the viewer's window).
+/// gl::Context first, or run inside the viewer's window). The scene must outlive it.
+///
+/// The leaf geometry (corner positions of every leaf patch, welded across polygons for the
+/// smooth reconstruction) is built and uploaded at the first call, and again only when the
+/// hierarchy's discretisation changes; each call then computes and uploads the colours only
+/// (one float RGB per welded vertex, or per leaf in flat mode), so the viewer may call draw()
+/// every frame.
 class SolutionRenderer {
 public:
     explicit SolutionRenderer(const Scene& scene);
@@ -35,11 +62,23 @@ public:
     SolutionRenderer(const SolutionRenderer&) = delete;
     SolutionRenderer& operator=(const SolutionRenderer&) = delete;
 
-    /// Renders into an offscreen float framebuffer and reads it back (row 0 = top).
+    /// Renders into an offscreen float framebuffer (RGBA32F + 32-bit depth, one sample per
+    /// pixel) and reads it back (row 0 = top). Restores the GL state it changes.
     ImageRGB render(const Hierarchy& h, const Camera& camera, const RenderOptions& options);
-    /// Draws into the currently bound framebuffer and viewport (the viewer's window).
+    /// Draws into the currently bound framebuffer and viewport (the viewer's window): clears
+    /// its colour (to options.background) and depth, then draws. The aspect ratio is
+    /// viewport_width / viewport_height. Restores the GL state it changes.
     void draw(const Hierarchy& h, const Camera& camera, const RenderOptions& options,
               int viewport_width, int viewport_height);
+
+    /// Statistics of the current geometry (after the first render/draw).
+    struct Stats {
+        std::size_t leaves = 0;    ///< leaf patches drawn
+        std::size_t vertices = 0;  ///< leaf-grid vertices (per polygon)
+        std::size_t nodes = 0;     ///< welded vertices (smooth values computed per node)
+        std::size_t triangles = 0; ///< triangles drawn
+    };
+    Stats stats() const;
 
 private:
     struct Impl;
