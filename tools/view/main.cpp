@@ -1,0 +1,512 @@
+// hemirad-view: an interactive GLFW window on a scene that solves progressively between frames
+// and shows the solution as it converges. Same scene loading, Solver and SolutionRenderer as
+// `hemirad solve`; the GPU form-factor provider renders its hemicubes in the window's context.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <glad/gl.h>
+
+#include <signal.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "../../src/output/draw.h"
+#include "../preview/common.h"
+#include "hemirad/error.h"
+#include "hemirad/image.h"
+#include "hemirad/render.h"
+#include "hemirad/solver.h"
+#include "orbit_camera.h"
+#include "overlay.h"
+
+namespace hemirad::view {
+namespace {
+
+constexpr const char* kTool = "hemirad-view";
+using Clock = std::chrono::steady_clock;
+
+const char* kHelp =
+    "mouse   left drag: orbit    right/middle drag: pan    wheel: zoom\n"
+    "W S / Up Down: fly forward/back    Left Right: fly sideways\n"
+    "PgUp PgDn: fly up/down    (hold Shift: 4x faster)\n"
+    "R  reset view             F  frame the scene\n"
+    "Space  pause/resume       N  one shot (while paused)\n"
+    "1 / 2  smooth / flat      E  patch edges\n"
+    "C  false-colour irradiance (with legend)\n"
+    "A  ambient term           + / -  exposure up/down (1/2 stop)\n"
+    "O  status line            H / F1  this help\n"
+    "Esc / Q  quit";
+
+struct Options {
+    std::string scene;
+    int width = 960, height = 720;
+    double budget_ms = 30;       ///< solving time per frame [ms], at least one shot
+    std::string camera;          ///< empty: the scene's default
+    std::string screenshot;      ///< FILE.png: save one frame and exit
+    long after_shots = -1;       ///< screenshot (or exit) once this many shots are done
+    long frames = -1;            ///< screenshot (or exit) at this frame
+    bool no_ambient = false, no_overlay = false, flat = false, edges = false, paused = false;
+    bool false_colour = false, show_help = false, quiet = false;
+    double exposure = 0;         ///< [stops]
+};
+
+/// Everything the input callbacks change.
+struct ViewState {
+    OrbitCamera camera;
+    Bounds bounds;
+    bool flat = false, edges = false, false_colour = false, ambient = true;
+    bool paused = false, step_once = false, help = false, status = true;
+    double exposure = 0;
+    int drag_button = -1;        ///< GLFW mouse button held, -1 none
+    double last_x = 0, last_y = 0;
+    bool dirty = true;           ///< something changed: draw again
+    int fb_height = 1, fb_width = 1;
+};
+
+ViewState& state_of(GLFWwindow* w) {
+    return *static_cast<ViewState*>(glfwGetWindowUserPointer(w));
+}
+
+void on_key(GLFWwindow* w, int key, int, int action, int) {
+    if (action != GLFW_PRESS && !(action == GLFW_REPEAT && (key == GLFW_KEY_N))) return;
+    ViewState& s = state_of(w);
+    s.dirty = true;
+    switch (key) {
+    case GLFW_KEY_ESCAPE:
+    case GLFW_KEY_Q: glfwSetWindowShouldClose(w, GLFW_TRUE); break;
+    case GLFW_KEY_R: s.camera.reset(); break;
+    case GLFW_KEY_F:
+        s.camera.frame(s.bounds, double(s.fb_width) / std::max(s.fb_height, 1));
+        break;
+    case GLFW_KEY_SPACE: s.paused = !s.paused; break;
+    case GLFW_KEY_N: s.paused = true; s.step_once = true; break;
+    case GLFW_KEY_1: s.flat = false; break;
+    case GLFW_KEY_2: s.flat = true; break;
+    case GLFW_KEY_E: s.edges = !s.edges; break;
+    case GLFW_KEY_C: s.false_colour = !s.false_colour; break;
+    case GLFW_KEY_A: s.ambient = !s.ambient; break;
+    case GLFW_KEY_EQUAL:
+    case GLFW_KEY_KP_ADD: s.exposure += 0.5; break;
+    case GLFW_KEY_MINUS:
+    case GLFW_KEY_KP_SUBTRACT: s.exposure -= 0.5; break;
+    case GLFW_KEY_O: s.status = !s.status; break;
+    case GLFW_KEY_H:
+    case GLFW_KEY_F1: s.help = !s.help; break;
+    default: break;
+    }
+}
+
+void on_mouse_button(GLFWwindow* w, int button, int action, int) {
+    ViewState& s = state_of(w);
+    if (action == GLFW_PRESS && s.drag_button < 0) {
+        s.drag_button = button;
+        glfwGetCursorPos(w, &s.last_x, &s.last_y);
+    } else if (action == GLFW_RELEASE && button == s.drag_button) {
+        s.drag_button = -1;
+    }
+}
+
+void on_cursor(GLFWwindow* w, double x, double y) {
+    ViewState& s = state_of(w);
+    if (s.drag_button < 0) return;
+    int ww = 1, wh = 1;
+    glfwGetWindowSize(w, &ww, &wh);
+    const double dx = x - s.last_x, dy = y - s.last_y;
+    s.last_x = x;
+    s.last_y = y;
+    if (s.drag_button == GLFW_MOUSE_BUTTON_LEFT) s.camera.orbit(dx, dy, wh);
+    else s.camera.pan(dx, dy, wh);
+    s.dirty = true;
+}
+
+void on_scroll(GLFWwindow* w, double, double yoffset) {
+    ViewState& s = state_of(w);
+    s.camera.zoom(yoffset);
+    s.dirty = true;
+}
+
+void on_resize(GLFWwindow* w, int width, int height) {
+    ViewState& s = state_of(w);
+    s.fb_width = width;
+    s.fb_height = height;
+    s.dirty = true;
+}
+
+volatile sig_atomic_t g_interrupted = 0;
+extern "C" void on_signal(int) { g_interrupted = 1; }
+
+std::string g_glfw_error;
+void on_glfw_error(int code, const char* text) {
+    g_glfw_error = text ? text : ("GLFW error " + std::to_string(code));
+}
+
+/// Fly with held keys: `dt` seconds of motion at a quarter of the scene size per second.
+void fly(GLFWwindow* w, ViewState& s, double dt) {
+    auto down = [w](int key) { return glfwGetKey(w, key) == GLFW_PRESS; };
+    const double f = (down(GLFW_KEY_W) || down(GLFW_KEY_UP) ? 1 : 0) -
+                     (down(GLFW_KEY_S) || down(GLFW_KEY_DOWN) ? 1 : 0);
+    const double r = (down(GLFW_KEY_RIGHT) ? 1 : 0) - (down(GLFW_KEY_LEFT) ? 1 : 0);
+    const double u = (down(GLFW_KEY_PAGE_UP) ? 1 : 0) - (down(GLFW_KEY_PAGE_DOWN) ? 1 : 0);
+    if (f == 0 && r == 0 && u == 0) return;
+    const bool fast = down(GLFW_KEY_LEFT_SHIFT) || down(GLFW_KEY_RIGHT_SHIFT);
+    const double k = 0.25 * std::min(dt, 0.1) * (fast ? 4 : 1);
+    s.camera.fly(f * k, r * k, u * k);
+    s.dirty = true;
+}
+
+/// The false-colour view of the irradiance, as `hemirad solve --false-colour` draws it: the
+/// luminance of E through viridis on a log scale over at most three decades under the
+/// maximum; where no surface is (background marked -1) grey. Returns the range, for the legend.
+struct ColourScale {
+    double lo = 1e-3, hi = 1;
+};
+Image8 false_colour_image(const ImageRGB& irr, ColourScale& scale) {
+    double hi = 0, lo_pos = HUGE_VAL;
+    for (int y = 0; y < irr.height; ++y)
+        for (int x = 0; x < irr.width; ++x) {
+            const float* p = irr.at(x, y);
+            if (p[0] < 0) continue;
+            const double l = luminance(p[0], p[1], p[2]);
+            if (!std::isfinite(l)) continue;
+            hi = std::max(hi, l);
+            if (l > 0) lo_pos = std::min(lo_pos, l);
+        }
+    if (!(hi > 0)) hi = 1;
+    scale.hi = hi;
+    scale.lo = std::isfinite(lo_pos) ? std::max(lo_pos, hi / 1000) : hi / 1000;
+    Image8 out(irr.width, irr.height);
+    for (int y = 0; y < irr.height; ++y)
+        for (int x = 0; x < irr.width; ++x) {
+            const float* p = irr.at(x, y);
+            out.set(x, y, p[0] < 0 ? Rgb8{128, 128, 128}
+                                   : false_colour(colour_scale_position(
+                                         luminance(p[0], p[1], p[2]), scale.lo, scale.hi, true)));
+        }
+    return out;
+}
+
+Image8 legend_panel(const ColourScale& scale) {
+    Image8 img(96, 220, {245, 245, 245});
+    draw_colour_legend(img, 8, 18, 16, 190, scale.lo, scale.hi, "E [W/unit\xc2\xb2]", true);
+    return img;
+}
+
+Image8 read_back_buffer(int width, int height) {
+    Image8 img(width, height);
+    std::vector<std::uint8_t> rows(std::size_t(width) * height * 3);
+    GLint alignment = 4;
+    glGetIntegerv(GL_PACK_ALIGNMENT, &alignment);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, rows.data());
+    glPixelStorei(GL_PACK_ALIGNMENT, alignment);
+    const std::size_t stride = std::size_t(width) * 3;
+    for (int y = 0; y < height; ++y) // GL row 0 is the bottom
+        std::copy_n(&rows[std::size_t(height - 1 - y) * stride], stride, img.at(0, y));
+    return img;
+}
+
+void validate(const Options& o, const ArgParser& args) {
+    if (o.width < 16 || o.width > 8192 || o.height < 16 || o.height > 8192)
+        throw InputError("--width/--height " + std::to_string(o.width) + "x" +
+                         std::to_string(o.height) + " must be in 16..8192");
+    if (!(o.budget_ms > 0 && o.budget_ms <= 10000))
+        throw InputError("--budget " + std::to_string(o.budget_ms) + " must be in (0, 10000] ms");
+    if (args.given("--after-shots") && o.after_shots < 0)
+        throw InputError("--after-shots " + std::to_string(o.after_shots) + " must be >= 0");
+    if (args.given("--frames") && o.frames < 1)
+        throw InputError("--frames " + std::to_string(o.frames) + " must be >= 1");
+    if (!o.screenshot.empty() &&
+        (o.screenshot.size() < 4 || o.screenshot.substr(o.screenshot.size() - 4) != ".png"))
+        throw InputError("--screenshot " + o.screenshot + ": expected a .png file name");
+    if (!std::isfinite(o.exposure)) throw InputError("--exposure must be finite");
+}
+
+/// Shots and frames per second over the last second or so.
+class Rate {
+public:
+    void add(long n, Clock::time_point now) {
+        count_ += n;
+        const double dt = std::chrono::duration<double>(now - start_).count();
+        if (dt >= 1.0) {
+            rate_ = count_ / dt;
+            count_ = 0;
+            start_ = now;
+        }
+    }
+    double rate() const { return rate_; }
+
+private:
+    Clock::time_point start_ = Clock::now();
+    long count_ = 0;
+    double rate_ = 0;
+};
+
+int run(int argc, char** argv) {
+    Options o;
+    SolverOptions so;
+    BuiltinOptions builtin;
+    ArgParser args(kTool, "hemirad-view SCENE [options]",
+                   "Opens a window on a scene, solves it progressively between frames and\n"
+                   "shows the solution as it converges. Press H in the window for the keys.\n"
+                   "With --screenshot, --after-shots or --frames it saves a frame and exits.");
+    args.positional("SCENE", &o.scene,
+                    "OBJ file or built-in scene (cornell, cube, furnace, sphere)");
+    args.section("window");
+    args.option("--width", &o.width, "W", "window width [pixels]");
+    args.option("--height", &o.height, "H", "window height [pixels]");
+    args.option("--budget", &o.budget_ms, "MS", "solving time per frame (at least one shot)");
+    args.option("--camera", &o.camera, "E,T,U,FOV",
+                "eye x,y,z, target x,y,z, up x,y,z, vertical fov [deg] (default: the scene's)");
+    args.flag("--no-ambient", &o.no_ambient, "start with the ambient term off (key A)");
+    args.flag("--flat-shading", &o.flat, "start with flat shading (key 2)");
+    args.flag("--edges", &o.edges, "start with patch edges shown (key E)");
+    args.flag("--false-colour", &o.false_colour, "start with false-colour irradiance (key C)");
+    args.option("--exposure", &o.exposure, "STOPS", "start exposure (keys + and -)");
+    args.flag("--no-overlay", &o.no_overlay, "start with the status line hidden (key O)");
+    args.flag("--paused", &o.paused, "start paused (Space resumes, N steps)");
+    args.flag("--show-help", &o.show_help, "start with the key help shown (key H)");
+    args.section("scripted runs");
+    args.option("--screenshot", &o.screenshot, "FILE.png",
+                "save the window (back buffer) as PNG and exit");
+    args.option("--after-shots", &o.after_shots, "N",
+                "... once N shots are done (solving stops there)");
+    args.option("--frames", &o.frames, "K", "... at frame K (without --screenshot: exit)");
+    args.flag("--quiet", &o.quiet, "print nothing but errors");
+    tool::add_solver_options(args, so);
+    tool::add_builtin_scene_options(args, builtin);
+    if (!args.parse(argc, argv)) return 0;
+    validate(o, args);
+    std::optional<Camera> user_camera;
+    if (!o.camera.empty()) user_camera = parse_camera(o.camera);
+    const bool scripted = !o.screenshot.empty() || o.after_shots >= 0 || o.frames > 0;
+
+    // Load the scene before opening a window: a bad scene is an error message, not a window.
+    const Scene scene = load_scene(o.scene, builtin);
+    tool::print_scene_warnings(kTool, scene, o.quiet);
+
+    glfwSetErrorCallback(on_glfw_error);
+    if (!glfwInit())
+        throw RuntimeError("cannot initialise GLFW: " + g_glfw_error +
+                           " (no display? headless, run under xvfb-run -a)");
+    struct GlfwTerminate {
+        ~GlfwTerminate() { glfwTerminate(); }
+    } terminate_glfw;
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_DEPTH_BITS, 0); // the scene is drawn into a SceneTarget
+    if (scripted) glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+    const std::string title = std::string("hemirad-view: ") + scene.source;
+    GLFWwindow* window = glfwCreateWindow(o.width, o.height, title.c_str(), nullptr, nullptr);
+    if (!window)
+        throw RuntimeError("no OpenGL 4.5 core window: " + g_glfw_error);
+    struct WindowDestroy {
+        GLFWwindow* w;
+        ~WindowDestroy() { glfwDestroyWindow(w); }
+    } destroy_window{window};
+    glfwMakeContextCurrent(window);
+    if (gladLoadGL(reinterpret_cast<GLADloadfunc>(glfwGetProcAddress)) == 0)
+        throw RuntimeError("gladLoadGL found no OpenGL entry points in the GLFW context");
+    glfwSwapInterval(scripted ? 0 : 1);
+    const auto* gl_renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const std::string renderer_name = gl_renderer ? gl_renderer : "?";
+    if (!o.quiet)
+        std::fprintf(stderr, "%s: OpenGL glfw: %s (%s)\n", kTool, renderer_name.c_str(),
+                     reinterpret_cast<const char*>(glGetString(GL_VENDOR)));
+
+    // GL objects (provider, renderer, overlay) live in this scope, inside the window's life.
+    {
+        so.provider.gpu.use_current_context = true;
+        Solver solver(scene, so);
+        SolutionRenderer renderer(scene);
+        Overlay overlay;
+        SceneTarget target;
+        if (!o.quiet)
+            std::fprintf(stderr, "%s: %s: %zu polygons, %llu leaf patches, form factors: %s\n",
+                         kTool, scene.source.c_str(), scene.polygons.size(),
+                         (unsigned long long)solver.hierarchy().leaf_count(),
+                         solver.provider().name().c_str());
+
+        int fbw = 0, fbh = 0;
+        glfwGetFramebufferSize(window, &fbw, &fbh);
+        const Camera start = user_camera ? *user_camera
+                                         : default_camera(scene);
+        ViewState s{OrbitCamera(start, std::max(scene.bounds().diagonal(), 1e-9)),
+                    scene.bounds()};
+        s.flat = o.flat;
+        s.edges = o.edges;
+        s.false_colour = o.false_colour;
+        s.ambient = !o.no_ambient;
+        s.paused = o.paused;
+        s.status = !o.no_overlay;
+        s.exposure = o.exposure;
+        s.help = o.show_help;
+        s.fb_width = fbw;
+        s.fb_height = fbh;
+        glfwSetWindowUserPointer(window, &s);
+        glfwSetKeyCallback(window, on_key);
+        glfwSetMouseButtonCallback(window, on_mouse_button);
+        glfwSetCursorPosCallback(window, on_cursor);
+        glfwSetScrollCallback(window, on_scroll);
+        glfwSetFramebufferSizeCallback(window, on_resize);
+
+        bool running = true; // the solver has not stopped
+        long frames = 0;
+        Rate shot_rate, frame_rate;
+        auto last = Clock::now();
+        const auto budget = std::chrono::duration<double, std::milli>(o.budget_ms);
+        // Ctrl-C in the terminal closes the window as the close button does.
+        signal(SIGINT, on_signal);
+        signal(SIGTERM, on_signal);
+        while (!glfwWindowShouldClose(window) && !g_interrupted) {
+            const bool shot_cap = o.after_shots >= 0 && solver.shots() >= o.after_shots;
+            const bool solving = running && !shot_cap && (!s.paused || s.step_once);
+            // Idle (paused, converged, minimised): wait for input instead of spinning.
+            if (!solving && !s.dirty && !scripted) glfwWaitEventsTimeout(0.25);
+            else glfwPollEvents();
+            const auto now = Clock::now();
+            fly(window, s, std::chrono::duration<double>(now - last).count());
+            last = now;
+
+            // Solve for the frame's budget: at least one shot while not converged.
+            long shots_before = solver.shots();
+            if (running && !shot_cap && (!s.paused || s.step_once)) {
+                const auto t0 = Clock::now();
+                do {
+                    if (!solver.step()) {
+                        running = false;
+                        if (!o.quiet)
+                            std::fprintf(stderr, "%s: %s after %ld shots in %.2f s: error bound "
+                                                 "%.3e\n",
+                                         kTool, to_string(solver.stop_reason()), solver.shots(),
+                                         solver.seconds(), solver.error_bound());
+                        break;
+                    }
+                    if (s.step_once || (o.after_shots >= 0 && solver.shots() >= o.after_shots))
+                        break;
+                } while (Clock::now() - t0 < budget);
+                s.step_once = false;
+                s.dirty = true;
+            }
+            shot_rate.add(solver.shots() - shots_before, Clock::now());
+
+            glfwGetFramebufferSize(window, &fbw, &fbh);
+            s.fb_width = fbw;
+            s.fb_height = fbh;
+            if (fbw <= 0 || fbh <= 0) { // minimised: nothing to draw into
+                if (!running || s.paused) glfwWaitEventsTimeout(0.1);
+                continue;
+            }
+            if (!s.dirty && !scripted) continue;
+            s.dirty = false;
+
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            glViewport(0, 0, fbw, fbh);
+            glClearColor(0, 0, 0, 1);
+            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            RenderOptions ro;
+            ro.shading = s.flat ? RenderOptions::Shading::Flat : RenderOptions::Shading::Smooth;
+            ro.patch_edges = s.edges;
+            ro.ambient = s.ambient;
+            ro.ambient_irradiance = solver.ambient_irradiance();
+            const Camera cam = s.camera.camera();
+            ColourScale scale;
+            Hierarchy& h = solver.solution();
+            if (s.false_colour) {
+                // The shader has no colour map: render E, map it on the CPU, blit it.
+                ro.width = fbw;
+                ro.height = fbh;
+                ro.quantity = RenderOptions::Quantity::Irradiance;
+                ro.patch_edges = false;
+                ro.background = dvec3(-1.0);
+                overlay.blit(false_colour_image(renderer.render(h, cam, ro), scale), 0, 0, fbw,
+                             fbh);
+            } else {
+                // Automatic exposure as for files (auto_exposure_scale: 95th percentile of
+                // luminance -> 1), from an offscreen render: full size for a screenshot, so
+                // that it matches `hemirad solve -o`, else at most 256 pixels wide.
+                const double shrink = scripted ? 1.0 : std::min(1.0, 256.0 / fbw);
+                RenderOptions eo = ro;
+                eo.patch_edges = false;
+                eo.width = std::max(16, int(std::lround(fbw * shrink)));
+                eo.height = std::max(16, int(std::lround(fbh * shrink)));
+                ro.scale = auto_exposure_scale(renderer.render(h, cam, eo)) * std::exp2(s.exposure);
+                ro.tone_map = true;
+                target.bind(fbw, fbh);
+                renderer.draw(h, cam, ro, fbw, fbh);
+                target.present();
+            }
+
+            frame_rate.add(1, Clock::now());
+            if (s.status) {
+                char line[512];
+                std::snprintf(line, sizeof line,
+                              "shots %ld  unshot %.2e  bound %.2e  %.1f shots/s  %.0f FPS  "
+                              "exp %+.1f%s%s%s",
+                              solver.shots(), solver.unshot_fraction(), solver.error_bound(),
+                              shot_rate.rate(), frame_rate.rate(), s.exposure,
+                              s.ambient && !s.false_colour ? "  ambient" : "",
+                              s.paused ? "  [paused]" : "",
+                              running ? "" : (std::string("  [") +
+                                              to_string(solver.stop_reason()) + "]").c_str());
+                std::string text = line;
+                // The GL renderer on the same line if it fits, else on a line of its own.
+                const std::string same = text + "  |  " + renderer_name;
+                text = text_width(same) + 8 <= fbw ? same : text + "\n" + renderer_name;
+                const Image8 panel = text_panel(text);
+                overlay.blit(panel, 0, fbh - panel.height, fbw, fbh);
+            }
+            if (s.false_colour) {
+                const Image8 legend = legend_panel(scale);
+                overlay.blit(legend, fbw - legend.width - 4, 4, fbw, fbh);
+            }
+            if (s.help) overlay.blit(text_panel(kHelp, 1, 8), 8, 8, fbw, fbh);
+            else if (s.status && !scripted)
+                overlay.blit(text_panel("H: help"), 4, 4, fbw, fbh);
+
+            ++frames;
+            const bool shots_done = o.after_shots < 0 || solver.shots() >= o.after_shots ||
+                                    !running;
+            const bool frames_done = o.frames <= 0 || frames >= o.frames;
+            if (scripted && shots_done && frames_done && (o.after_shots >= 0 || o.frames > 0 ||
+                                                          frames >= 1)) {
+                if (!o.screenshot.empty()) {
+                    glFinish();
+                    write_png(o.screenshot, read_back_buffer(fbw, fbh));
+                    if (!o.quiet)
+                        std::fprintf(stderr, "%s: wrote %s (%dx%d) after %ld shots, frame %ld\n",
+                                     kTool, o.screenshot.c_str(), fbw, fbh, solver.shots(),
+                                     frames);
+                }
+                break;
+            }
+            glfwSwapBuffers(window);
+        }
+    }
+    return 0;
+}
+
+} // namespace
+} // namespace hemirad::view
+
+int main(int argc, char** argv) {
+    try {
+        return hemirad::view::run(argc, argv);
+    } catch (const hemirad::InputError& e) {
+        std::fprintf(stderr, "%s: %s\n", hemirad::view::kTool, e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: %s\n", hemirad::view::kTool, e.what());
+        return 1;
+    }
+}
