@@ -259,6 +259,9 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
     }
     glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
     glDepthFunc(GL_LESS);
+    // Wait for the rasteriser here, so that the time of render() is the rendering and that
+    // of read_back() the copy (the readback would wait anyway; nothing is lost).
+    glFinish();
     glBindVertexArray(0);
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
