@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "hemirad/error.h"
 #include "hemirad/patch.h"
 #include "hemirad/scene.h"
 
@@ -53,6 +54,15 @@ public:
     /// polygons in the last shoot(): near 1 when the shooter's centre is enclosed (under a
     /// box, behind a light), where a point-sampled shot would lose the patch's power.
     virtual double last_backface_fraction() const { return 0; }
+    /// State that affects later shots (adaptive resolutions, ...), for save/resume
+    /// (solution_file.h). Default: none. restore_state() gets what save_state() returned and
+    /// throws InputError if it cannot be this provider's.
+    virtual std::vector<double> save_state() const { return {}; }
+    virtual void restore_state(const std::vector<double>& state) {
+        if (!state.empty())
+            throw InputError("form-factor provider " + name() + " keeps no state, but " +
+                             std::to_string(state.size()) + " values were saved for it");
+    }
 
 protected:
     bool link_at_leaves_ = false;

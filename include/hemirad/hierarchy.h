@@ -77,6 +77,16 @@ public:
     /// Bytes of node storage per leaf patch (for reports).
     double bytes_per_leaf() const;
 
+    /// The complete state, for saving and resuming a solve bit for bit.
+    const std::vector<Node>& nodes() const { return nodes_; }
+    const std::vector<dvec3>& unshot_powers() const { return unshot_; }
+    const std::vector<std::uint8_t>& dirty_flags() const { return dirty_; }
+    /// Restores a state saved from a hierarchy of the same scene and discretisation: node
+    /// values (areas are kept: they are geometry), unshot powers and dirty flags. The sizes
+    /// must match (checked).
+    void restore_state(const std::vector<Node>& nodes, const std::vector<dvec3>& unshot,
+                       const std::vector<std::uint8_t>& dirty);
+
 private:
     void pull_path(const PatchAddress& a);
 

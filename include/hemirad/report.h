@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "hemirad/grid.h"
 #include "hemirad/json.h"
 #include "hemirad/solver.h"
 
@@ -13,6 +14,9 @@ namespace hemirad {
 /// emitted_power, unshot_fraction, error_bound, converged, row_sum{min,mean,max}, groups[...]
 /// with name, area, E_avg, E_min, E_max — incident irradiance, RGB).
 Json solve_report(Solver& solver);
+/// The same with calculation grids (grid.h): adds `grids: [grid_json(...)]`, and with `lux`
+/// photometric values (lux, for scenes in metres; weighting in grid.h).
+Json solve_report(Solver& solver, const std::vector<GridResult>& grids, bool lux);
 
 struct Probe {
     dvec3 position{0.0}, normal{0.0};

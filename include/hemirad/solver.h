@@ -31,6 +31,10 @@ struct SolverOptions {
     double shooter_power_fraction = 1.0 / 16.0;
     /// ...and its size (sqrt of area) at least this [scene units]; 0 = the leaf patch size.
     double shooter_min_size = 0;
+    /// ...but always descend below nodes larger than this [scene units]: a hemicube sees
+    /// from one point, so a large shooter's visibility is that of its centre only.
+    /// 0 = no limit.
+    double shooter_max_size = 0;
     bool flat = false;             ///< always shoot from leaves (no hierarchy), for comparison
     bool row_guard = false;        ///< rescale a shot's form factors if their row sum exceeds 1
     /// A shooter whose hemisphere is covered by the backs of polygons for more than this
@@ -110,6 +114,22 @@ public:
     Counters counters() const;
     void restore(const Counters& c);
 
+    /// The complete state that later shots depend on (save/resume, solution_file.h): resuming
+    /// from it gives results bit-identical to a run that was never interrupted. Taken between
+    /// steps and before solution() (whose push-pull would change the float sums' order).
+    struct State {
+        Counters counters;
+        std::vector<Hierarchy::Node> nodes;   ///< every node, in Hierarchy order
+        std::vector<dvec3> unshot;            ///< per polygon, unshot power [W]
+        std::vector<std::uint8_t> dirty;      ///< per polygon, needs a push-pull
+        std::vector<std::uint8_t> enclosed;   ///< per node, see enclosed_fraction
+        std::vector<double> provider;         ///< FormFactorProvider::save_state()
+    };
+    State save_state() const;
+    /// Restores a state saved by a solver with the same scene and options. Throws InputError
+    /// if the sizes do not fit this solver's hierarchy or provider, or a value is not finite.
+    void restore_state(const State& state);
+
 private:
     void init();
     PatchAddress select_shooter(std::uint32_t polygon);
@@ -127,6 +147,7 @@ private:
     dvec3 emitted_{0.0}, absorbed_{0.0}, escaped_{0.0};
     double rho_max_ = 0;
     double min_size_ = 0;
+    double max_size_ = 0;
     double row_min_ = 1e300, row_max_ = 0, row_total_ = 0;
     long row_guarded_ = 0;
     std::int64_t last_polygon_ = -1;

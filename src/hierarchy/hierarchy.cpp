@@ -173,6 +173,20 @@ dvec3 Hierarchy::irradiance(const PatchAddress& a) const {
     return h;
 }
 
+void Hierarchy::restore_state(const std::vector<Node>& nodes, const std::vector<dvec3>& unshot,
+                              const std::vector<std::uint8_t>& dirty) {
+    HEMIRAD_CHECK_EQ(nodes.size(), nodes_.size());
+    HEMIRAD_CHECK_EQ(unshot.size(), unshot_.size());
+    HEMIRAD_CHECK_EQ(dirty.size(), dirty_.size());
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        nodes_[i].H = nodes[i].H;
+        nodes_[i].dB = nodes[i].dB;
+        nodes_[i].dI = nodes[i].dI;
+    }
+    unshot_ = unshot;
+    dirty_ = dirty;
+}
+
 double Hierarchy::bytes_per_leaf() const {
     return leaves_ ? double(nodes_.size() * sizeof(Node)) / double(leaves_) : 0.0;
 }

@@ -53,6 +53,21 @@ Json solve_report(Solver& solver) {
     return j;
 }
 
+Json solve_report(Solver& solver, const std::vector<GridResult>& grids, bool lux) {
+    Json j = solve_report(solver);
+    if (grids.empty()) return j;
+    Json a = Json::array();
+    for (const GridResult& g : grids) a.push_back(grid_json(g, lux));
+    j["grids"] = a;
+    j["grid_quantities"] =
+        lux ? "grids: E_min/E_avg/E_max = luminance-weighted irradiance (0.2126 R + 0.7152 G + "
+              "0.0722 B) [W per scene unit^2], U0 = E_min/E_avg, E_rgb per channel; lux = 683 "
+              "lm/W times that luminance (scene in metres)"
+            : "grids: E_min/E_avg/E_max = luminance-weighted irradiance (0.2126 R + 0.7152 G + "
+              "0.0722 B) [W per scene unit^2], U0 = E_min/E_avg, E_rgb per channel";
+    return j;
+}
+
 std::vector<Probe> read_probes(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw InputError(path, 0, "cannot open probe file");

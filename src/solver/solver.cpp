@@ -29,9 +29,20 @@ void validate(const SolverOptions& o) {
     if (!(o.shooter_power_fraction > 0 && o.shooter_power_fraction <= 1))
         throw InputError("--shooter-power " + std::to_string(o.shooter_power_fraction) +
                          " must be in (0, 1]");
+    if (!(o.shooter_max_size >= 0))
+        throw InputError("--shooter-max-size " + std::to_string(o.shooter_max_size) +
+                         " must be >= 0");
     if (!(o.shooter_min_size >= 0))
         throw InputError("--shooter-size " + std::to_string(o.shooter_min_size) +
                          " must be >= 0");
+}
+
+// --- access to the hierarchy's private state, for save/resume ------------------------------
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+bool finite(const dvec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
 } // namespace
@@ -70,6 +81,7 @@ void Solver::init() {
     emitted_ = scene_->emitted_power();
     rho_max_ = scene_->max_reflectance();
     // Default minimum shooter size: the size of the smallest leaf patches' polygons' leaves.
+    max_size_ = options_.shooter_max_size > 0 ? options_.shooter_max_size : 1e300;
     min_size_ = options_.shooter_min_size;
     if (min_size_ <= 0) {
         double smallest = 1e300;
@@ -111,7 +123,8 @@ PatchAddress Solver::select_shooter(std::uint32_t polygon) {
         options_.shooter_power_fraction * sum(hierarchy_.total_unshot_power());
     PatchAddress a{polygon, 0, 0};
     while (int(a.level) < depth) {
-        const bool must_descend = enclosed_[hierarchy_.node_id(a)] != 0;
+        const bool must_descend = enclosed_[hierarchy_.node_id(a)] != 0 ||
+                                  std::sqrt(double(hierarchy_.node(a).area)) > max_size_;
         PatchAddress best = a;
         double best_power = -1;
         for (std::uint32_t c : patch_children(tri, a.level, a.index)) {
@@ -276,6 +289,53 @@ void Solver::restore(const Counters& c) {
     last_polygon_ = c.last_polygon;
     seconds_ = c.seconds;
     check_stop();
+}
+
+Solver::State Solver::save_state() const {
+    State st;
+    st.counters = counters();
+    st.nodes = hierarchy_.nodes();
+    st.unshot = hierarchy_.unshot_powers();
+    st.dirty = hierarchy_.dirty_flags();
+    st.enclosed = enclosed_;
+    st.provider = provider_->save_state();
+    return st;
+}
+
+void Solver::restore_state(const State& st) {
+    const std::vector<Hierarchy::Node>& nodes = hierarchy_.nodes();
+    const std::vector<dvec3>& unshot = hierarchy_.unshot_powers();
+    const std::vector<std::uint8_t>& dirty = hierarchy_.dirty_flags();
+    const auto expect = [](const char* what, std::size_t got, std::size_t want) {
+        if (got != want)
+            throw InputError(std::string("saved solver state: ") + what + ": " +
+                             std::to_string(got) + " saved, this solver has " +
+                             std::to_string(want));
+    };
+    expect("hierarchy nodes", st.nodes.size(), nodes.size());
+    expect("polygons (unshot power)", st.unshot.size(), unshot.size());
+    expect("polygons (dirty flags)", st.dirty.size(), dirty.size());
+    expect("enclosed flags", st.enclosed.size(), enclosed_.size());
+    for (std::size_t i = 0; i < st.nodes.size(); ++i) {
+        const Hierarchy::Node& n = st.nodes[i];
+        if (!finite(n.H) || !finite(n.dB) || !finite(n.dI))
+            throw InputError("saved solver state: node " + std::to_string(i) +
+                             " holds a non-finite value");
+    }
+    for (std::size_t p = 0; p < st.unshot.size(); ++p)
+        if (!finite(st.unshot[p]) || st.dirty[p] > 1)
+            throw InputError("saved solver state: polygon " + std::to_string(p) +
+                             " has an invalid unshot power or dirty flag");
+    const Counters& c = st.counters;
+    if (c.shots < 0 || !finite(c.absorbed) || !finite(c.escaped) || !std::isfinite(c.row_min) ||
+        !std::isfinite(c.row_max) || !std::isfinite(c.row_total) || c.row_guarded < 0 ||
+        c.last_polygon < -1 || c.last_polygon >= std::int64_t(scene_->polygons.size()) ||
+        !(c.seconds >= 0))
+        throw InputError("saved solver state: invalid counters");
+    provider_->restore_state(st.provider);
+    hierarchy_.restore_state(st.nodes, st.unshot, st.dirty);
+    enclosed_ = st.enclosed;
+    restore(c);
 }
 
 } // namespace hemirad

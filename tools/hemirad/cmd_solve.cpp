@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "commands.h"
@@ -13,6 +14,7 @@
 #include "hemirad/json.h"
 #include "hemirad/readout.h"
 #include "hemirad/solver.h"
+#include "export_outputs.h"
 #include "solve_outputs.h"
 
 namespace hemirad::cli {
@@ -57,6 +59,7 @@ int cmd_solve(int argc, char** argv) {
     SolverOptions so;
     BuiltinOptions builtin;
     OutputOptions out;
+    ExportOptions exports;
     ArgParser args("hemirad solve", "hemirad solve SCENE [options]",
                    "Solves the radiosity of a scene by progressive shooting until the error\n"
                    "bound falls under the tolerance, then writes what was asked for.");
@@ -89,6 +92,8 @@ int cmd_solve(int argc, char** argv) {
                 "GPU: adaptive resolution for the strongest shooters");
     args.option("--lod-bias", &so.provider.gpu.lod_bias, "B",
                 "GPU: mip LOD bias (+1 links patches twice as large)");
+    args.flag("--atan-angle", &so.provider.gpu.atan_angle,
+              "GPU: GLSL atan(|a x b|, a.b) for angles (most precise)");
     args.flag("--builtin-acos", &so.provider.gpu.builtin_acos,
               "GPU: GLSL acos instead of the 2048-entry lookup table");
     args.option("--backend", &so.provider.gpu.backend, "NAME", "GL backend: auto, egl, osmesa");
@@ -103,15 +108,24 @@ int cmd_solve(int argc, char** argv) {
     args.option("--probes", &probes_in, "IN.csv", "points x,y,z,nx,ny,nz to evaluate");
     args.option("--probe-out", &probes_out, "OUT.csv", "irradiance at the probe points");
     add_output_options(args, out);
+    add_export_options(args, exports);
     args.flag("--quiet", &quiet, "print nothing but errors");
     add_scene_options(args, builtin);
     if (!args.parse(argc, argv, 2)) return 0;
     if (!probes_in.empty() && probes_out.empty())
         throw InputError("--probes needs --probe-out OUT.csv");
     validate_output_options(out);
+    exports.lux = out.images.lux; // one --lux flag: false colour and grids
+    const std::vector<GridSpec> grid_specs = validate_export_options(exports);
 
+    // From here on SIGINT/SIGTERM end the solve at the end of a shot (or before the first),
+    // with every requested output written.
+    install_interrupt_handler();
     const Scene scene = load_scene(scene_name, builtin);
     print_warnings(scene, quiet);
+    // Before the solver is built: a resumed run takes the saved options it was not given.
+    const std::optional<SolutionFile> resumed =
+        prepare_resume(exports, args, scene, scene_name, so);
     const std::vector<Probe> probes = probes_in.empty() ? std::vector<Probe>{}
                                                         : read_probes(probes_in);
     // One GL context for the whole run: the GPU provider and the image outputs share it.
@@ -127,6 +141,12 @@ int cmd_solve(int argc, char** argv) {
                          context->renderer().c_str(), context->vendor().c_str());
     }
     Solver solver(scene, so);
+    if (resumed) {
+        resume_solution(solver, *resumed, exports.resume);
+        if (!quiet)
+            std::fprintf(stderr, "hemirad: resumed from %s after %ld shots\n",
+                         exports.resume.c_str(), solver.shots());
+    }
     if (!quiet) {
         std::fprintf(stderr, "hemirad: %s: %zu polygons, %llu leaf patches, form factors: %s\n",
                      scene.source.c_str(), scene.polygons.size(),
@@ -140,10 +160,9 @@ int cmd_solve(int argc, char** argv) {
     }
     const bool tty = isatty(2) && !quiet;
     auto last_print = std::chrono::steady_clock::now();
-    install_interrupt_handler();
     while (!interrupted() && solver.step()) {
         const ShotRecord& r = solver.last_shot();
-        if (log_file) log_file << shot_json(r).dump(0) << "\n";
+        if (log_file.is_open()) log_file << shot_json(r).dump(0) << "\n" << std::flush;
         const auto now = std::chrono::steady_clock::now();
         if (tty && now - last_print > std::chrono::milliseconds(250)) {
             std::fprintf(stderr, "\rshot %ld  unshot %.3e  error bound %.3e / %.3g  %.1f s   ",
@@ -153,10 +172,13 @@ int cmd_solve(int argc, char** argv) {
         }
     }
     if (tty) std::fprintf(stderr, "\r%*s\r", 79, "");
-    if (log_file) {
+    if (log_file.is_open()) {
         log_file.close();
         if (!log_file) throw RuntimeError("error writing " + log);
     }
+    // The state is saved before solution(), whose push-pull would change later float sums:
+    // a resumed run then ends bit-identical to an uninterrupted one.
+    write_solution_file(exports, solver, quiet);
     Hierarchy& h = solver.solution();
     const bool was_interrupted = interrupted();
     if (!quiet)
@@ -167,8 +189,10 @@ int cmd_solve(int argc, char** argv) {
                      solver.shots(), solver.seconds(), solver.error_bound(), so.tolerance,
                      solver.row_sums().min, solver.row_sums().max);
 
-    if (!report.empty()) write_report(report, solver, scene);
+    const std::vector<GridResult> grids = evaluate_grids(grid_specs, h, quiet);
+    if (!report.empty()) write_report(report, solver, scene, grids, exports.lux);
     if (!probes_out.empty()) write_probes(probes_out, probes, h);
+    write_export_outputs(exports, grids, h, quiet);
     write_outputs(out, solver, quiet);
     if (was_interrupted) {
         std::fprintf(stderr, "hemirad: interrupted by a signal; wrote the outputs of the current "

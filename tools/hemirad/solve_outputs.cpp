@@ -27,9 +27,10 @@ void write_outputs(const OutputOptions& o, Solver& solver, bool quiet) {
     write_image_outputs(o.images, solver, quiet);
 }
 
-void write_report(const std::string& path, Solver& solver, const Scene& scene) {
+void write_report(const std::string& path, Solver& solver, const Scene& scene,
+                  const std::vector<GridResult>& grids, bool lux) {
     (void)scene;
-    write_text_file(path, solve_report(solver).dump() + "\n");
+    write_text_file(path, solve_report(solver, grids, lux).dump() + "\n");
 }
 
 void write_probes(const std::string& path, const std::vector<Probe>& probes, const Hierarchy& h) {

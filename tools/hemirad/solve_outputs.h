@@ -20,7 +20,8 @@ void add_output_options(ArgParser& args, OutputOptions& o);
 void validate_output_options(const OutputOptions& o);
 void write_outputs(const OutputOptions& o, Solver& solver, bool quiet);
 
-void write_report(const std::string& path, Solver& solver, const Scene& scene);
+void write_report(const std::string& path, Solver& solver, const Scene& scene,
+                  const std::vector<GridResult>& grids = {}, bool lux = false);
 void write_probes(const std::string& path, const std::vector<Probe>& probes, const Hierarchy& h);
 
 /// SIGINT/SIGTERM set a flag: the solve finishes its shot, writes its outputs, exits non-zero.

@@ -1,0 +1,72 @@
+// Calculation grids (lighting engineering): incident irradiance E on a regular NX x NY grid of
+// points over a planar surface group, with minimum, average, maximum and uniformity U0.
+//
+// The grid lies in the group's plane (all its polygons must be coplanar and face the same way)
+// and covers the group's bounding rectangle in that plane: axis u along the first edge of the
+// group's first polygon, axis v = normal x u; the points are the centres of the NX x NY cells
+// of that rectangle, point (i, j) at origin + (i + 0.5)/NX * width * u + (j + 0.5)/NY * height * v.
+// A point that falls on none of the group's polygons (an L-shaped room, a gap) is skipped: it
+// is listed in the CSV without values and left out of the statistics.
+//
+// Photometric values (--lux): E_v = 683 lm/W * (0.2126 E_r + 0.7152 E_g + 0.0722 E_b), i.e. the
+// RGB channels are taken as radiometric irradiance [W m^-2] and weighted by their Rec. 709
+// luminance coefficients times the maximum luminous efficacy 683 lm/W. Lux needs a scene in
+// metres (irradiance per scene unit^2 is then W m^-2).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hemirad/hierarchy.h"
+#include "hemirad/json.h"
+
+namespace hemirad {
+
+/// Luminous efficacy used for lux [lm/W].
+inline constexpr double kLumensPerWatt = 683.0;
+
+/// Most points in one grid (NX * NY).
+inline constexpr long kMaxGridPoints = 4'000'000;
+
+struct GridSpec {
+    std::string group; ///< surface-group name
+    int nx = 0, ny = 0; ///< points along u and v, each 1..10000
+};
+
+/// Parses "GROUP:NXxNY" (also "GROUP:NX×NY"; the group name may contain ':', the last one
+/// separates; NX, NY in 1..10000, NX*NY <= kMaxGridPoints). Throws InputError quoting the text.
+GridSpec parse_grid_spec(const std::string& text);
+
+struct GridPoint {
+    int i = 0, j = 0;           ///< cell along u, v
+    dvec3 position{0.0};        ///< in the group's plane
+    bool on_surface = false;    ///< false: on no polygon of the group, skipped
+    std::uint32_t polygon = 0;  ///< the polygon it lies on (if on_surface)
+    dvec3 E{0.0};               ///< incident irradiance, RGB [W unit^-2]
+};
+
+struct GridResult {
+    GridSpec spec;
+    dvec3 origin{0.0}, axis_u{0.0}, axis_v{0.0}, normal{0.0}; ///< unit axes
+    double width = 0, height = 0;   ///< of the bounding rectangle [unit]
+    std::vector<GridPoint> points;  ///< nx*ny, row-major: index j*nx + i
+    long evaluated = 0, skipped = 0;
+    /// Statistics over the evaluated points. Luminance Y = 0.2126 R + 0.7152 G + 0.0722 B.
+    double Y_min = 0, Y_avg = 0, Y_max = 0;
+    double U0 = 0;                  ///< Y_min / Y_avg (0 when Y_avg is 0)
+    dvec3 E_min{0.0}, E_avg{0.0}, E_max{0.0}; ///< per channel
+};
+
+/// Evaluates the grid on a push-pulled hierarchy (Solver::solution()). Throws InputError for an
+/// unknown group (listing the groups) or a group whose polygons are not coplanar.
+GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec);
+
+/// The report entry: {group, nx, ny, points, skipped, E_min, E_avg, E_max, U0 (luminance,
+/// W unit^-2), E_rgb {min, avg, max}, and with lux: lux {min, avg, max}}.
+Json grid_json(const GridResult& g, bool lux);
+
+/// CSV of all grids: group,i,j,x,y,z,E_r,E_g,E_b,E_Y[,lux]; a skipped point has empty values.
+std::string grids_csv(const std::vector<GridResult>& grids, bool lux);
+
+} // namespace hemirad

@@ -1,0 +1,79 @@
+// Saving and resuming a solve (`hemirad solve --save-solution FILE`, `--resume FILE`).
+//
+// A solution file holds the complete solver state (Solver::State), so that a resumed run ends
+// with results bit-identical to a run that was never interrupted (same scene, options and
+// backend). It is binary, little-endian, written atomically, and laid out as:
+//
+//     offset  size  field
+//     0       8     magic "HEMIRAD\x1a"
+//     8       4     u32 format version (kSolutionFileVersion)
+//     12      8     u64 scene content hash (Scene::content_hash())
+//     20      ...   str scene source (as given: path or builtin:NAME), for messages
+//             ...   u32 option count, then (str name, str value) per option: the options that
+//                   affect results (solution_options()), named as on the command line, values
+//                   as text (doubles in hexadecimal, exact)
+//             ...   counters: i64 shots, f64[3] absorbed, f64[3] escaped, f64 row_min,
+//                   f64 row_max, f64 row_total, i64 row_guarded, i64 last_polygon, f64 seconds
+//             ...   u32 polygon count P, u64 node count N
+//             N*36  per node (Hierarchy order): f32[3] H, f32[3] dB, f32[3] dI
+//             P*25  per polygon: f64[3] unshot power, u8 dirty
+//             N     per node: u8 enclosed
+//             ...   u32 count, then f64 per value: provider state (FormFactorProvider)
+//     end-8   8     u64 FNV-1a 64 hash of every byte before it (detects corruption)
+//
+// (str = u32 byte length + bytes.) A file that is truncated, corrupt, of another version or
+// inconsistent is refused with an InputError naming it; reading never crashes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hemirad/solver.h"
+
+namespace hemirad {
+
+inline constexpr std::uint32_t kSolutionFileVersion = 1;
+
+/// An option that affects results, as (command-line name, exact value text).
+using SolutionOption = std::pair<std::string, std::string>;
+
+/// The options of `o` that affect results: --ff, the hierarchy options, the shooter options
+/// and the provider options. A new option of SolverOptions, ProviderOptions or
+/// HierarchyOptions that changes results must be added here and to apply_solution_option(). Not included, so free to change on resume: --tolerance,
+/// --max-shots, --time-limit (stop criteria), --backend and --device (where it runs).
+std::vector<SolutionOption> solution_options(const SolverOptions& o);
+/// Sets the option `name` of `o` from its saved text. Throws InputError for an unknown name
+/// or a malformed value (`file` names the solution file in the message).
+void apply_solution_option(SolverOptions& o, const SolutionOption& option,
+                           const std::string& file);
+
+struct SolutionFile {
+    std::uint64_t scene_hash = 0;
+    std::string scene_source;
+    std::vector<SolutionOption> options;
+    Solver::State state;
+};
+
+/// The bytes of a solution file for the solver's current state (call between steps, before
+/// Solver::solution()).
+std::string solution_bytes(const Solver& solver);
+/// Writes solution_bytes() to `path` atomically. Throws RuntimeError naming the path.
+void save_solution(const std::string& path, const Solver& solver);
+
+/// Parses solution-file bytes; `path` names the file in messages. Throws InputError.
+SolutionFile parse_solution(const std::string& bytes, const std::string& path);
+/// Reads and parses a solution file. Throws InputError (missing, truncated, corrupt).
+SolutionFile read_solution(const std::string& path);
+
+/// Checks that `file` (read from `path`) was saved for `scene` (loaded from `scene_path`):
+/// throws InputError naming both files and both hashes if not.
+void check_solution_scene(const SolutionFile& file, const std::string& path, const Scene& scene,
+                          const std::string& scene_path);
+
+/// Restores the solver's state from `file` (read from `path`); the solver must have been built
+/// for the same scene and with the saved options. Throws InputError naming `path`.
+void resume_solution(Solver& solver, const SolutionFile& file, const std::string& path);
+
+} // namespace hemirad

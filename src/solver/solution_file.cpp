@@ -1,0 +1,356 @@
+// Solution files: the solver's complete state, for save and resume (layout in the header).
+#include "hemirad/solution_file.h"
+
+#include <bit>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "hemirad/error.h"
+#include "output/atomic_file.h"
+
+namespace hemirad {
+
+namespace {
+
+constexpr char kMagic[8] = {'H', 'E', 'M', 'I', 'R', 'A', 'D', '\x1a'};
+
+std::uint64_t fnv1a(const char* data, std::size_t size) {
+    std::uint64_t h = 1469598103934665603ull;
+    for (std::size_t i = 0; i < size; ++i) h = (h ^ std::uint8_t(data[i])) * 1099511628211ull;
+    return h;
+}
+
+// --- little-endian encoding -------------------------------------------------------------------
+
+class Writer {
+public:
+    void u8(std::uint8_t v) { out_.push_back(char(v)); }
+    void u32(std::uint32_t v) {
+        for (int i = 0; i < 4; ++i) out_.push_back(char((v >> (8 * i)) & 0xff));
+    }
+    void u64(std::uint64_t v) {
+        for (int i = 0; i < 8; ++i) out_.push_back(char((v >> (8 * i)) & 0xff));
+    }
+    void i64(std::int64_t v) { u64(std::uint64_t(v)); }
+    void f32(float v) { u32(std::bit_cast<std::uint32_t>(v)); }
+    void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
+    void vec3(const glm::vec3& v) { f32(v.x), f32(v.y), f32(v.z); }
+    void dvec(const dvec3& v) { f64(v.x), f64(v.y), f64(v.z); }
+    void str(const std::string& s) {
+        u32(std::uint32_t(s.size()));
+        out_ += s;
+    }
+    void raw(const char* p, std::size_t n) { out_.append(p, n); }
+    std::string& bytes() { return out_; }
+
+private:
+    std::string out_;
+};
+
+class Reader {
+public:
+    Reader(const std::string& bytes, std::size_t end, const std::string& path)
+        : b_(bytes), end_(end), path_(path) {}
+    void need(std::size_t n, const char* what) {
+        if (end_ - pos_ < n)
+            throw InputError(path_, 0, "truncated solution file: " + std::to_string(n) +
+                                           " bytes of " + what + " expected at byte " +
+                                           std::to_string(pos_) + ", " +
+                                           std::to_string(end_ - pos_) + " left");
+    }
+    std::uint8_t u8(const char* what) {
+        need(1, what);
+        return std::uint8_t(b_[pos_++]);
+    }
+    std::uint32_t u32(const char* what) {
+        need(4, what);
+        std::uint32_t v = 0;
+        for (int i = 0; i < 4; ++i) v |= std::uint32_t(std::uint8_t(b_[pos_ + i])) << (8 * i);
+        pos_ += 4;
+        return v;
+    }
+    std::uint64_t u64(const char* what) {
+        need(8, what);
+        std::uint64_t v = 0;
+        for (int i = 0; i < 8; ++i) v |= std::uint64_t(std::uint8_t(b_[pos_ + i])) << (8 * i);
+        pos_ += 8;
+        return v;
+    }
+    std::int64_t i64(const char* what) { return std::int64_t(u64(what)); }
+    float f32(const char* what) { return std::bit_cast<float>(u32(what)); }
+    double f64(const char* what) { return std::bit_cast<double>(u64(what)); }
+    glm::vec3 vec3(const char* what) {
+        glm::vec3 v;
+        v.x = f32(what), v.y = f32(what), v.z = f32(what);
+        return v;
+    }
+    dvec3 dvec(const char* what) {
+        dvec3 v;
+        v.x = f64(what), v.y = f64(what), v.z = f64(what);
+        return v;
+    }
+    std::string str(const char* what) {
+        const std::uint32_t n = u32(what);
+        need(n, what);
+        std::string s = b_.substr(pos_, n);
+        pos_ += n;
+        return s;
+    }
+    /// A count of items of `item_size` bytes each that must fit in what is left.
+    std::uint64_t count(std::uint64_t n, std::size_t item_size, const char* what) {
+        if (item_size > 0 && n > (end_ - pos_) / item_size)
+            throw InputError(path_, 0, "corrupt solution file: " + std::to_string(n) + " " +
+                                           what + " at byte " + std::to_string(pos_) +
+                                           " do not fit in the file");
+        return n;
+    }
+    std::size_t pos() const { return pos_; }
+
+private:
+    const std::string& b_;
+    std::size_t end_;
+    std::size_t pos_ = 0;
+    const std::string& path_;
+};
+
+std::string hex(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%a", v);
+    return buf;
+}
+
+std::string hash_text(std::uint64_t h) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%016" PRIx64, h);
+    return buf;
+}
+
+} // namespace
+
+std::vector<SolutionOption> solution_options(const SolverOptions& o) {
+    const auto b = [](bool v) { return std::string(v ? "1" : "0"); };
+    const GpuProviderOptions& g = o.provider.gpu;
+    const CpuProviderOptions& c = o.provider.cpu;
+    return {
+        {"--ff", o.ff},
+        {"--patch-size", hex(o.hierarchy.patch_size)},
+        {"--max-depth", std::to_string(o.hierarchy.max_depth)},
+        {"--shooter-power", hex(o.shooter_power_fraction)},
+        {"--shooter-size", hex(o.shooter_min_size)},
+        {"--shooter-max-size", hex(o.shooter_max_size)},
+        {"--flat", b(o.flat)},
+        {"--row-guard", b(o.row_guard)},
+        {"--enclosed-fraction", hex(o.enclosed_fraction)},
+        {"--resolution", std::to_string(g.resolution)},
+        {"--min-resolution", std::to_string(g.min_resolution)},
+        {"--max-resolution", std::to_string(g.max_resolution)},
+        {"--lod-bias", hex(g.lod_bias)},
+        {"--builtin-acos", b(g.builtin_acos)},
+        {"--atan-angle", b(g.atan_angle)},
+        {"--link-angle", hex(c.link_angle)},
+        {"--visibility-samples", std::to_string(c.visibility_samples)},
+        {"--gauss-order", std::to_string(c.gauss_order)},
+        {"--sr-rays", std::to_string(c.sr_rays)},
+        {"--sr-points", std::to_string(c.sr_points)},
+        {"--seed", std::to_string(c.seed)},
+    };
+}
+
+void apply_solution_option(SolverOptions& o, const SolutionOption& option,
+                           const std::string& file) {
+    const std::string& name = option.first;
+    const std::string& text = option.second;
+    const auto bad = [&]() {
+        return InputError(file, 0, "saved option " + name + " has a malformed value '" + text +
+                                       "'");
+    };
+    const auto dbl = [&](double& out) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0' || !std::isfinite(v)) throw bad();
+        out = v;
+    };
+    const auto integer = [&](auto& out) {
+        char* end = nullptr;
+        const long long v = std::strtoll(text.c_str(), &end, 10);
+        if (text.empty() || *end != '\0') throw bad();
+        out = static_cast<std::remove_reference_t<decltype(out)>>(v);
+    };
+    const auto boolean = [&](bool& out) {
+        if (text != "0" && text != "1") throw bad();
+        out = text == "1";
+    };
+    GpuProviderOptions& g = o.provider.gpu;
+    CpuProviderOptions& c = o.provider.cpu;
+    if (name == "--ff") o.ff = text;
+    else if (name == "--patch-size") dbl(o.hierarchy.patch_size);
+    else if (name == "--max-depth") integer(o.hierarchy.max_depth);
+    else if (name == "--shooter-power") dbl(o.shooter_power_fraction);
+    else if (name == "--shooter-size") dbl(o.shooter_min_size);
+    else if (name == "--shooter-max-size") dbl(o.shooter_max_size);
+    else if (name == "--flat") boolean(o.flat);
+    else if (name == "--row-guard") boolean(o.row_guard);
+    else if (name == "--enclosed-fraction") dbl(o.enclosed_fraction);
+    else if (name == "--resolution") integer(g.resolution);
+    else if (name == "--min-resolution") integer(g.min_resolution);
+    else if (name == "--max-resolution") integer(g.max_resolution);
+    else if (name == "--lod-bias") dbl(g.lod_bias);
+    else if (name == "--builtin-acos") boolean(g.builtin_acos);
+    else if (name == "--atan-angle") boolean(g.atan_angle);
+    else if (name == "--link-angle") dbl(c.link_angle);
+    else if (name == "--visibility-samples") integer(c.visibility_samples);
+    else if (name == "--gauss-order") integer(c.gauss_order);
+    else if (name == "--sr-rays") integer(c.sr_rays);
+    else if (name == "--sr-points") integer(c.sr_points);
+    else if (name == "--seed") {
+        char* end = nullptr;
+        const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
+        if (text.empty() || *end != '\0') throw bad();
+        c.seed = v;
+    } else
+        throw InputError(file, 0, "unknown saved option '" + name + "' (saved by a newer "
+                                  "hemirad?)");
+}
+
+std::string solution_bytes(const Solver& solver) {
+    const Solver::State st = solver.save_state();
+    const Scene& scene = solver.scene();
+    Writer w;
+    w.raw(kMagic, sizeof kMagic);
+    w.u32(kSolutionFileVersion);
+    w.u64(scene.content_hash());
+    w.str(scene.source);
+    const std::vector<SolutionOption> options = solution_options(solver.options());
+    w.u32(std::uint32_t(options.size()));
+    for (const SolutionOption& o : options) w.str(o.first), w.str(o.second);
+    const Solver::Counters& c = st.counters;
+    w.i64(c.shots);
+    w.dvec(c.absorbed);
+    w.dvec(c.escaped);
+    w.f64(c.row_min);
+    w.f64(c.row_max);
+    w.f64(c.row_total);
+    w.i64(c.row_guarded);
+    w.i64(c.last_polygon);
+    w.f64(c.seconds);
+    w.u32(std::uint32_t(st.unshot.size()));
+    w.u64(st.nodes.size());
+    for (const Hierarchy::Node& n : st.nodes) w.vec3(n.H), w.vec3(n.dB), w.vec3(n.dI);
+    for (std::size_t p = 0; p < st.unshot.size(); ++p) w.dvec(st.unshot[p]), w.u8(st.dirty[p]);
+    for (std::uint8_t e : st.enclosed) w.u8(e);
+    w.u32(std::uint32_t(st.provider.size()));
+    for (double v : st.provider) w.f64(v);
+    w.u64(fnv1a(w.bytes().data(), w.bytes().size()));
+    return std::move(w.bytes());
+}
+
+void save_solution(const std::string& path, const Solver& solver) {
+    write_file_atomically(path, solution_bytes(solver));
+}
+
+SolutionFile parse_solution(const std::string& bytes, const std::string& path) {
+    if (bytes.size() < sizeof kMagic + 4 + 8 ||
+        std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+        throw InputError(path, 0, "not a hemirad solution file (no HEMIRAD magic header)");
+    Reader head(bytes, bytes.size(), path);
+    for (std::size_t i = 0; i < sizeof kMagic; ++i) head.u8("magic");
+    const std::uint32_t version = head.u32("version");
+    if (version != kSolutionFileVersion)
+        throw InputError(path, 0, "solution file format version " + std::to_string(version) +
+                                      " is not supported (this hemirad reads version " +
+                                      std::to_string(kSolutionFileVersion) + ")");
+    const std::size_t body = bytes.size() - 8;
+    std::uint64_t stored = 0;
+    for (int i = 0; i < 8; ++i) stored |= std::uint64_t(std::uint8_t(bytes[body + i])) << (8 * i);
+    if (stored != fnv1a(bytes.data(), body))
+        throw InputError(path, 0, "corrupt solution file: checksum mismatch (the file was "
+                                  "truncated or changed after it was written)");
+
+    Reader r(bytes, body, path);
+    for (std::size_t i = 0; i < sizeof kMagic; ++i) r.u8("magic");
+    r.u32("version");
+    SolutionFile f;
+    f.scene_hash = r.u64("scene hash");
+    f.scene_source = r.str("scene source");
+    const std::uint64_t n_options = r.count(r.u32("option count"), 8, "options");
+    for (std::uint64_t i = 0; i < n_options; ++i) {
+        std::string name = r.str("option name");
+        std::string value = r.str("option value");
+        f.options.emplace_back(std::move(name), std::move(value));
+    }
+    Solver::Counters& c = f.state.counters;
+    c.shots = r.i64("shots");
+    c.absorbed = r.dvec("absorbed power");
+    c.escaped = r.dvec("escaped power");
+    c.row_min = r.f64("row sum min");
+    c.row_max = r.f64("row sum max");
+    c.row_total = r.f64("row sum total");
+    c.row_guarded = r.i64("guarded rows");
+    c.last_polygon = r.i64("last polygon");
+    c.seconds = r.f64("seconds");
+    const std::uint32_t polygons = r.u32("polygon count");
+    const std::uint64_t nodes = r.u64("node count");
+    r.count(nodes, 37, "nodes");
+    r.count(polygons, 25, "polygons");
+    f.state.nodes.resize(nodes);
+    for (Hierarchy::Node& n : f.state.nodes) {
+        n.H = r.vec3("node H");
+        n.dB = r.vec3("node dB");
+        n.dI = r.vec3("node dI");
+    }
+    f.state.unshot.resize(polygons);
+    f.state.dirty.resize(polygons);
+    for (std::uint32_t p = 0; p < polygons; ++p) {
+        f.state.unshot[p] = r.dvec("unshot power");
+        f.state.dirty[p] = r.u8("dirty flag");
+    }
+    f.state.enclosed.resize(nodes);
+    for (std::uint8_t& e : f.state.enclosed) e = r.u8("enclosed flags");
+    const std::uint64_t n_provider = r.count(r.u32("provider state count"), 8, "provider values");
+    f.state.provider.resize(n_provider);
+    for (double& v : f.state.provider) v = r.f64("provider state");
+    if (r.pos() != body)
+        throw InputError(path, 0, "corrupt solution file: " + std::to_string(body - r.pos()) +
+                                      " unexpected bytes before the checksum");
+    return f;
+}
+
+SolutionFile read_solution(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, 0, "cannot open solution file");
+    std::ostringstream s;
+    s << in.rdbuf();
+    if (in.bad()) throw InputError(path, 0, "error reading solution file");
+    return parse_solution(s.str(), path);
+}
+
+void check_solution_scene(const SolutionFile& file, const std::string& path, const Scene& scene,
+                          const std::string& scene_path) {
+    const std::uint64_t h = scene.content_hash();
+    if (file.scene_hash != h)
+        throw InputError(path + ": the solution was saved for another scene: " +
+                         file.scene_source + " (content hash " + hash_text(file.scene_hash) +
+                         "), but " + scene_path + " has content hash " + hash_text(h) +
+                         " (geometry or materials differ)");
+}
+
+void resume_solution(Solver& solver, const SolutionFile& file, const std::string& path) {
+    const std::vector<SolutionOption> now = solution_options(solver.options());
+    for (const SolutionOption& saved : file.options) {
+        for (const SolutionOption& o : now)
+            if (o.first == saved.first && o.second != saved.second)
+                throw InputError(path, 0, "saved with " + saved.first + " " + saved.second +
+                                              ", but this solver has " + o.second);
+    }
+    try {
+        solver.restore_state(file.state);
+    } catch (const InputError& e) {
+        throw InputError(path, 0, e.what());
+    }
+}
+
+} // namespace hemirad

@@ -1,0 +1,95 @@
+#include "export_outputs.h"
+
+#include <cstdio>
+
+#include "hemirad/error.h"
+#include "hemirad/export.h"
+#include "hemirad/report.h"
+
+namespace hemirad::cli {
+
+void add_export_options(ArgParser& args, ExportOptions& o) {
+    args.section("grids, exports, save and resume");
+    args.multi("--grid", &o.grids, "GROUP:NXxNY",
+               "irradiance on NXxNY points over a planar surface group (repeatable; x or ×)");
+    args.option("--grid-out", &o.grid_out, "FILE.csv",
+                "all grid points: group,i,j,x,y,z,E_r,E_g,E_b,E_Y[,lux]");
+    // --lux is registered once, with the image options (it also sets the false-colour unit);
+    // cmd_solve copies it into ExportOptions::lux.
+    args.option("--export-ply", &o.ply, "FILE.ply",
+                "leaf-level mesh with per-vertex radiosity (binary PLY)");
+    args.option("--export-lightmaps", &o.lightmaps, "DIR",
+                "per surface group: DIR/GROUP.exr atlas of leaf radiosity + GROUP.obj with UVs");
+    args.option("--save-solution", &o.save_solution, "FILE",
+                "save the solver state at the end (also when interrupted)");
+    args.option("--resume", &o.resume, "FILE",
+                "continue from a saved state: same scene; options not given take the saved "
+                "values, given ones must match; --time-limit counts the saved run's time");
+}
+
+std::vector<GridSpec> validate_export_options(const ExportOptions& o) {
+    std::vector<GridSpec> specs;
+    for (const std::string& g : o.grids) specs.push_back(parse_grid_spec(g));
+    if (!o.grid_out.empty() && specs.empty())
+        throw InputError("--grid-out needs at least one --grid GROUP:NXxNY");
+    return specs;
+}
+
+std::optional<SolutionFile> prepare_resume(const ExportOptions& o, const ArgParser& args,
+                                           const Scene& scene, const std::string& scene_name,
+                                           SolverOptions& so) {
+    if (o.resume.empty()) return std::nullopt;
+    SolutionFile f = read_solution(o.resume);
+    check_solution_scene(f, o.resume, scene, scene_name);
+    const std::vector<SolutionOption> now = solution_options(so);
+    for (const SolutionOption& saved : f.options) {
+        if (!args.given(saved.first)) {
+            apply_solution_option(so, saved, o.resume);
+            continue;
+        }
+        for (const SolutionOption& given : now)
+            if (given.first == saved.first && given.second != saved.second)
+                throw InputError(o.resume + ": the solution was saved with " + saved.first +
+                                 " " + saved.second + ", but the command line gives " +
+                                 given.first + " " + given.second +
+                                 " (leave it out to resume with the saved value)");
+    }
+    return f;
+}
+
+void write_solution_file(const ExportOptions& o, const Solver& solver, bool quiet) {
+    if (o.save_solution.empty()) return;
+    save_solution(o.save_solution, solver);
+    if (!quiet)
+        std::fprintf(stderr, "hemirad: saved the solver state after %ld shots to %s\n",
+                     solver.shots(), o.save_solution.c_str());
+}
+
+std::vector<GridResult> evaluate_grids(const std::vector<GridSpec>& specs, const Hierarchy& h,
+                                       bool quiet) {
+    std::vector<GridResult> grids;
+    for (const GridSpec& s : specs) {
+        grids.push_back(evaluate_grid(h, s));
+        const GridResult& g = grids.back();
+        if (!quiet && g.skipped > 0)
+            std::fprintf(stderr,
+                         "hemirad: grid %s:%dx%d: %ld of %ld points lie on no polygon of the "
+                         "group and were skipped\n",
+                         s.group.c_str(), s.nx, s.ny, g.skipped, long(g.points.size()));
+    }
+    return grids;
+}
+
+void write_export_outputs(const ExportOptions& o, const std::vector<GridResult>& grids,
+                          const Hierarchy& h, bool quiet) {
+    if (!o.grid_out.empty()) write_text_file(o.grid_out, grids_csv(grids, o.lux));
+    if (!o.ply.empty()) export_ply(o.ply, h);
+    if (!o.lightmaps.empty()) {
+        const std::vector<std::string> files = export_lightmaps(o.lightmaps, h);
+        if (!quiet)
+            std::fprintf(stderr, "hemirad: wrote %zu lightmap files to %s\n", files.size(),
+                         o.lightmaps.c_str());
+    }
+}
+
+} // namespace hemirad::cli

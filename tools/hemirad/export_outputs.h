@@ -1,0 +1,46 @@
+// `hemirad solve` options for results people use: calculation grids, exports (PLY,
+// lightmaps), and saving/resuming the solver state.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hemirad/args.h"
+#include "hemirad/grid.h"
+#include "hemirad/solution_file.h"
+#include "hemirad/solver.h"
+
+namespace hemirad::cli {
+
+struct ExportOptions {
+    std::vector<std::string> grids; ///< --grid GROUP:NXxNY, repeatable
+    std::string grid_out;           ///< --grid-out FILE.csv: every grid's points, one file
+    bool lux = false;               ///< --lux (shared with the images): grids also in lux
+    std::string ply;                ///< --export-ply FILE.ply
+    std::string lightmaps;          ///< --export-lightmaps DIR
+    std::string save_solution;      ///< --save-solution FILE: solver state at the end
+    std::string resume;             ///< --resume FILE: continue from a saved state
+};
+void add_export_options(ArgParser& args, ExportOptions& o);
+/// Checks combinations and parses the grid specs. Throws InputError.
+std::vector<GridSpec> validate_export_options(const ExportOptions& o);
+
+/// With --resume: reads the file, checks that it was saved for `scene` (loaded from
+/// `scene_name`), refuses options given on the command line that differ from the saved ones
+/// (naming the option) and takes the saved value of those not given. Nothing without --resume.
+std::optional<SolutionFile> prepare_resume(const ExportOptions& o, const ArgParser& args,
+                                           const Scene& scene, const std::string& scene_name,
+                                           SolverOptions& so);
+
+/// Writes --save-solution (call after the last step, before Solver::solution()).
+void write_solution_file(const ExportOptions& o, const Solver& solver, bool quiet);
+
+/// Evaluates the grids on the push-pulled solution.
+std::vector<GridResult> evaluate_grids(const std::vector<GridSpec>& specs, const Hierarchy& h,
+                                       bool quiet);
+/// Writes --grid-out, --export-ply and --export-lightmaps.
+void write_export_outputs(const ExportOptions& o, const std::vector<GridResult>& grids,
+                          const Hierarchy& h, bool quiet);
+
+} // namespace hemirad::cli
