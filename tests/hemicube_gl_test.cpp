@@ -351,7 +351,9 @@ TEST(Hybrid, ClampedPartialNodesAndCloserToReference) {
                 EXPECT_EQ(l.ff, l.ff_analytic);
             }
         }
-        if (std::string(mode) == "hybrid") EXPECT_GT(partial, 0);
+        if (std::string(mode) == "hybrid") {
+            EXPECT_GT(partial, 0);
+        }
         double sum = 0, norm = 0;
         for (std::size_t i = 0; i < reference.size(); ++i) {
             sum += (gpu[i] - reference[i]) * (gpu[i] - reference[i]);

@@ -137,9 +137,11 @@ TEST(Builtin, CornellLightPowerAndGroups) {
     EXPECT_EQ(s.triangle_count(), 2u);
     // Every polygon faces the inside of the box, or away from a block's centre.
     const dvec3 inside(278, 274, 280);
-    for (const Polygon& q : s.polygons)
-        if (s.groups[q.group].find("block") == std::string::npos)
+    for (const Polygon& q : s.polygons) {
+        if (s.groups[q.group].find("block") == std::string::npos) {
             EXPECT_GT(glm::dot(q.normal, inside - q.centroid()), 0) << s.groups[q.group];
+        }
+    }
 }
 
 TEST(Builtin, CubeFacesAndSubdivision) {

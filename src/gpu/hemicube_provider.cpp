@@ -171,47 +171,99 @@ private:
             pixel_sum_[id] += layout.delta_ff[i];
         }
         backface_ = backface;
-        if (mode_ == Mode::Hybrid) {
-            // Mark the ancestors of every seen node: "something below was seen".
-            for (const PatchAddress& a : touched_) {
-                const bool tri = scene_->polygons[a.polygon].is_triangle();
-                std::uint32_t l = a.level, i = a.index;
-                while (l > 0) {
-                    i = patch_parent(tri, l, i);
-                    --l;
-                    std::uint32_t& b = below_seen_[node_id(a.polygon, l, i)];
-                    if (b == stamp_) break;
-                    b = stamp_;
-                }
+        // Mark the ancestors of every seen node: "something below was seen".
+        for (const PatchAddress& a : touched_) {
+            const bool tri = scene_->polygons[a.polygon].is_triangle();
+            std::uint32_t l = a.level, i = a.index;
+            while (l > 0) {
+                i = patch_parent(tri, l, i);
+                --l;
+                std::uint32_t& b = below_seen_[node_id(a.polygon, l, i)];
+                if (b == stamp_) break;
+                b = stamp_;
             }
         }
         const double area_s = shooter.geometry.area;
         links.reserve(touched_.size());
         for (const PatchAddress& a : touched_) {
             const std::uint64_t id = node_id(a.polygon, a.level, a.index);
-            const double area_j = area(a.polygon, a.level, a.index);
-            Link l;
-            l.receiver = a;
-            l.ff_analytic = analytic_[id];
-            // F(S->j) from the pixels, then reciprocity: F(j->S) = F(S->j) A_S / A_j.
-            l.ff_pixel = float(double(pixel_sum_[id]) * area_s / area_j);
-            switch (mode_) {
-            case Mode::Hemicube: l.ff = l.ff_pixel; break;
-            case Mode::Analytic: l.ff = l.ff_analytic; break;
-            case Mode::Hybrid: {
-                const bool tri = scene_->polygons[a.polygon].is_triangle();
-                for (std::uint32_t nb : patch_neighbours(tri, a.level, a.index)) {
-                    if (nb == UINT32_MAX) continue;
-                    if (occluded(shooter, a.polygon, a.level, nb)) {
-                        l.partial = true;
-                        break;
-                    }
+            if (below_seen_[id] == stamp_) {
+                // The oracle picks a level per fragment, so where GL's LOD crosses a level a
+                // node and some of its descendants are both seen. Linking both would deliver
+                // light twice to the descendants' area; the finer links win, and the rest of
+                // this node is linked by "filler" children that were not seen themselves.
+                split(shooter, a, double(pixel_sum_[id]), links);
+                continue;
+            }
+            add_link(shooter, a, analytic_[id], double(pixel_sum_[id]) * area_s, links);
+        }
+    }
+
+    // Adds the link of node a: analytic F(j->S), and the pixel sum as A_S F(S->j).
+    void add_link(const Shooter& shooter, const PatchAddress& a, float analytic,
+                  double pixel_power, std::vector<Link>& links) {
+        const double area_j = area(a.polygon, a.level, a.index);
+        Link l;
+        l.receiver = a;
+        l.ff_analytic = analytic;
+        // Reciprocity: F(j->S) = F(S->j) A_S / A_j.
+        l.ff_pixel = float(pixel_power / area_j);
+        switch (mode_) {
+        case Mode::Hemicube: l.ff = l.ff_pixel; break;
+        case Mode::Analytic: l.ff = l.ff_analytic; break;
+        case Mode::Hybrid: {
+            const bool tri = scene_->polygons[a.polygon].is_triangle();
+            for (std::uint32_t nb : patch_neighbours(tri, a.level, a.index)) {
+                if (nb == UINT32_MAX) continue;
+                if (occluded(shooter, a.polygon, a.level, nb)) {
+                    l.partial = true;
+                    break;
                 }
-                l.ff = l.partial ? std::min(l.ff_pixel, l.ff_analytic) : l.ff_analytic;
-                break;
             }
-            }
-            if (l.ff > 0) links.push_back(l);
+            l.ff = l.partial ? std::min(l.ff_pixel, l.ff_analytic) : l.ff_analytic;
+            break;
+        }
+        }
+        if (l.ff > 0) links.push_back(l);
+    }
+
+    // Links the parts of seen node a that no seen descendant covers, at the level of a's
+    // children: their analytic value is computed here (double precision, same formula as the
+    // shader), visibility taken from a; a's pixels are shared among them in proportion to
+    // their analytic A_j F(j->S).
+    void split(const Shooter& shooter, const PatchAddress& a, double pixel_sum,
+               std::vector<Link>& links) {
+        fillers_.clear();
+        collect_fillers(a);
+        if (fillers_.empty()) return;
+        const Polygon& poly = scene_->polygons[a.polygon];
+        const dvec3* corners = shooter.geometry.corners.data();
+        filler_values_.clear();
+        double total = 0;
+        for (const PatchAddress& c : fillers_) {
+            const PatchGeometry g = patch_geometry(poly, c.level, c.index);
+            const double f = point_to_polygon_ff(g.centre, poly.normal, corners,
+                                                 shooter.geometry.count);
+            filler_values_.push_back(f);
+            total += f * g.area;
+        }
+        const double area_s = shooter.geometry.area;
+        for (std::size_t k = 0; k < fillers_.size(); ++k) {
+            const PatchAddress& c = fillers_[k];
+            const double share =
+                total > 0 ? filler_values_[k] * area(c.polygon, c.level, c.index) / total : 0;
+            add_link(shooter, c, float(filler_values_[k]), pixel_sum * share * area_s, links);
+        }
+    }
+
+    void collect_fillers(const PatchAddress& a) {
+        const bool tri = scene_->polygons[a.polygon].is_triangle();
+        for (std::uint32_t c : patch_children(tri, a.level, a.index)) {
+            const PatchAddress ca{a.polygon, a.level + 1, c};
+            const std::uint64_t id = node_id(ca.polygon, ca.level, ca.index);
+            if (seen_[id] == stamp_) continue;                 // linked on its own
+            if (below_seen_[id] == stamp_) collect_fillers(ca); // partly linked below
+            else fillers_.push_back(ca);
         }
     }
 
@@ -226,7 +278,8 @@ private:
     std::vector<std::uint64_t> base_;
     std::vector<float> pixels_, pixel_sum_, analytic_, area_;
     std::vector<std::uint32_t> seen_, below_seen_;
-    std::vector<PatchAddress> touched_;
+    std::vector<PatchAddress> touched_, fillers_;
+    std::vector<double> filler_values_;
     std::vector<Timing> timings_;
     std::uint32_t stamp_ = 0;
     double max_power_ = 0;
