@@ -3,7 +3,7 @@
 // analytic form factor from a differential area at the patch centre to the shooter.
 //
 //   R = float(index within level), G = float(level), B = float(polygon + 1) (0 = nothing,
-//   -1 = the back of a polygon),
+//   -(polygon + 1) = the back of a polygon),
 //   A = F(dA_j -> S) = 1/(2 pi) sum_k N_j . Gamma_k   (paper 002 eq. in §3.1)
 //
 // The mip level that GL selects from the patch-ID texture is the linking oracle: it picks the
@@ -85,9 +85,10 @@ float point_to_shooter(vec3 p, vec3 n) {
 
 void main() {
     if (!gl_FrontFacing || v_polygon == shooter_polygon) {
-        // An occluder seen from behind: blocks, receives nothing. B = -1 marks it, so that a
-        // shooter whose centre is enclosed (under a block, behind a light) can be detected.
-        out_id = vec4(0.0, 0.0, -1.0, 0.0);
+        // An occluder seen from behind: blocks, receives nothing. B = -(polygon + 1) marks
+        // it, so that a shooter whose centre is enclosed (under a block, behind a light) can
+        // be detected, and the occluder's distance known.
+        out_id = vec4(0.0, 0.0, -float(v_polygon + 1), 0.0);
         return;
     }
     PolygonData poly = polygons[v_polygon];

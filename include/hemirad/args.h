@@ -13,6 +13,8 @@ public:
     ArgParser(std::string program, std::string usage, std::string description);
 
     void flag(const std::string& name, bool* out, const std::string& help);
+    /// A flag that turns a default-on setting off (e.g. --no-row-guard): sets *out = false.
+    void flag_off(const std::string& name, bool* out, const std::string& help);
     void option(const std::string& name, std::string* out, const std::string& metavar,
                 const std::string& help);
     void option(const std::string& name, double* out, const std::string& metavar,
@@ -42,6 +44,7 @@ private:
         std::string name, metavar, help, default_text;
         std::function<void(const std::string&)> set; // null for flags
         bool* flag = nullptr;
+        bool flag_value = true; ///< the value a given flag stores
         bool is_section = false;
     };
     struct Pos {

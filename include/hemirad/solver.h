@@ -36,7 +36,9 @@ struct SolverOptions {
     /// 0 = no limit.
     double shooter_max_size = 0;
     bool flat = false;             ///< always shoot from leaves (no hierarchy), for comparison
-    bool row_guard = false;        ///< rescale a shot's form factors if their row sum exceeds 1
+    /// Rescale a shot's form factors when their row sum exceeds 1 (paper 000: rows above 1
+    /// create energy; in a closed cube they reached 1.0018 and put 3 % on a 5 % indirect).
+    bool row_guard = true;
     /// A shooter whose hemisphere is covered by the backs of polygons for more than this
     /// fraction (its centre is enclosed: under a box, behind a light) is not shot; its
     /// children are shot instead, so that its power is not lost. (0, 1]; 1 = never refine.

@@ -39,6 +39,15 @@ void ArgParser::flag(const std::string& name, bool* out, const std::string& help
     opts_.push_back(o);
 }
 
+void ArgParser::flag_off(const std::string& name, bool* out, const std::string& help) {
+    Opt o;
+    o.name = name;
+    o.help = help;
+    o.flag = out;
+    o.flag_value = false;
+    opts_.push_back(o);
+}
+
 void ArgParser::option(const std::string& name, std::string* out, const std::string& metavar,
                        const std::string& help) {
     Opt o{name, metavar, help, out->empty() ? "" : *out, nullptr};
@@ -128,7 +137,7 @@ bool ArgParser::parse(int argc, char** argv, int first) {
             given_.push_back(a);
             if (it->flag) {
                 if (has_value) throw InputError(a + " takes no value");
-                *it->flag = true;
+                *it->flag = it->flag_value;
                 continue;
             }
             if (!has_value) {

@@ -80,6 +80,38 @@ HemicubeLayout make_hemicube_layout(int res) {
     return L;
 }
 
+HemicubeFrame hemicube_frame(const Shooter& shooter) {
+    HemicubeFrame f;
+    f.N = shooter.normal;
+    const dvec3 e = shooter.geometry.corners[1] - shooter.geometry.corners[0];
+    f.T = glm::normalize(e - glm::dot(e, f.N) * f.N);
+    f.B = glm::cross(f.N, f.T);
+    const dvec3 dirs[5] = {f.N, f.T, -f.T, f.B, -f.B};
+    for (int k = 0; k < 5; ++k) {
+        f.dir[k] = dirs[k];
+        f.up[k] = k == 0 ? f.B : f.N;
+    }
+    return f;
+}
+
+long hemicube_pixel(const HemicubeLayout& L, const HemicubeFrame& f, const dvec3& d) {
+    if (glm::dot(d, f.N) <= 0) return -1;
+    // The face whose view direction is closest to d; glm::lookAt's screen x is dir x up.
+    int face = 0;
+    double best = -1;
+    for (int k = 0; k < 5; ++k) {
+        const double c = glm::dot(d, f.dir[k]);
+        if (c > best) best = c, face = k;
+    }
+    const dvec3 screen_x = glm::cross(f.dir[face], f.up[face]);
+    const double sx = glm::dot(d, screen_x) / best, sy = glm::dot(d, f.up[face]) / best;
+    const auto& r = L.faces[face];
+    const int i = std::clamp(int((sx + 1) * 0.5 * L.res), 0, r.w - 1);
+    const int j = face == 0 ? std::clamp(int((sy + 1) * 0.5 * L.res), 0, r.h - 1)
+                            : std::clamp(int(sy * 0.5 * L.res), 0, r.h - 1);
+    return long(r.y + j) * L.width + r.x + i;
+}
+
 HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& disc,
                                    int max_resolution)
     : scene_(&scene), max_res_(max_resolution) {
@@ -175,14 +207,9 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
 void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layout,
                               double lod_bias, int angle_method) {
     HEMIRAD_CHECK_LE(layout.res, max_res_);
-    const dvec3 N = shooter.normal;
+    const HemicubeFrame frame = hemicube_frame(shooter);
+    const dvec3 N = frame.N;
     const dvec3 c = shooter.geometry.centre;
-    // Tangent frame: T along the shooter's first edge.
-    dvec3 T = shooter.geometry.corners[1] - shooter.geometry.corners[0];
-    T = glm::normalize(T - glm::dot(T, N) * N);
-    const dvec3 B = glm::cross(N, T);
-    struct FaceView { dvec3 dir, up; };
-    const FaceView views[5] = {{N, B}, {T, N}, {-T, N}, {B, N}, {-B, N}};
 
     // Near plane: far below any patch, above float noise.
     const double near =
@@ -221,7 +248,7 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
     drawn_ = 0;
     for (int f = 0; f < 5; ++f) {
         const auto& face = layout.faces[f];
-        const FaceView& v = views[f];
+        struct { dvec3 dir, up; } v{frame.dir[f], frame.up[f]};
         const glm::dmat4 view = glm::lookAt(dvec3(0.0), v.dir, v.up);
         const glm::mat4 proj = f == 0 ? reversed_z_frustum(-near, near, -near, near, near)
                                       : reversed_z_frustum(-near, near, 0, near, near);

@@ -28,6 +28,18 @@ struct HemicubeLayout {
 };
 HemicubeLayout make_hemicube_layout(int res);
 
+/// The hemicube's frame at a shooter: N its normal, T along its first edge, B = N x T. The
+/// five faces look along N (up: B), T, -T, B, -B (up: N), in the layout's order.
+struct HemicubeFrame {
+    dvec3 N, T, B;
+    dvec3 dir[5], up[5];
+};
+HemicubeFrame hemicube_frame(const Shooter& shooter);
+
+/// The framebuffer pixel (index into the layout, row 0 at the bottom) that the direction d
+/// (from the hemicube's centre) falls in, or -1 if d points below the shooter's plane.
+long hemicube_pixel(const HemicubeLayout& layout, const HemicubeFrame& frame, const dvec3& d);
+
 class HemicubeRenderer {
 public:
     /// Uploads the scene's polygons and the patch-ID mip texture (depth = max of `disc`).

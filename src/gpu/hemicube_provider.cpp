@@ -62,6 +62,7 @@ public:
         pixel_sum_.assign(total, 0.f);
         analytic_.assign(total, 0.f);
         seen_.assign(total, 0);
+        polygon_seen_.assign(scene.polygons.size(), 0);
         below_seen_.assign(total, 0);
         area_.assign(total, -1.f);
     }
@@ -159,6 +160,7 @@ private:
                 continue;
             }
             const auto p = std::uint32_t(px[2]) - 1;
+            polygon_seen_[p] = stamp_;
             const auto level = std::uint32_t(px[1]);
             const auto index = std::uint32_t(px[0]);
             const std::uint64_t id = node_id(p, level, index);
@@ -196,6 +198,46 @@ private:
                 continue;
             }
             add_link(shooter, a, analytic_[id], double(pixel_sum_[id]) * area_s, links);
+        }
+        if (mode_ != Mode::Hemicube) link_missed_polygons(shooter, layout, links);
+    }
+
+    // A polygon smaller than a pixel can fall between pixel centres and get no pixel at all
+    // (the oracle can coarsen within a polygon, not below one): its light would be lost,
+    // and the rows of closed scenes of many small polygons would sum under 1. For every
+    // polygon in front of the shooter that no pixel shows, look at the pixel its centre
+    // falls in: if the surface there is farther away (or there is none), the polygon is
+    // visible and is linked whole, with its analytic value computed here.
+    void link_missed_polygons(const Shooter& shooter, const gpu::HemicubeLayout& layout,
+                              std::vector<Link>& links) {
+        const gpu::HemicubeFrame frame = gpu::hemicube_frame(shooter);
+        const dvec3& eye = shooter.geometry.centre;
+        const dvec3* corners = shooter.geometry.corners.data();
+        for (std::uint32_t p = 0; p < scene_->polygons.size(); ++p) {
+            if (polygon_seen_[p] == stamp_ || p == shooter.address.polygon) continue;
+            const Polygon& poly = scene_->polygons[p];
+            const dvec3 centre = patch_geometry(poly, 0, 0).centre;
+            const dvec3 d = centre - eye;
+            if (glm::dot(poly.normal, d) >= 0) continue; // faces away from the shooter
+            const long pixel = gpu::hemicube_pixel(layout, frame, d);
+            if (pixel < 0) continue;                      // below the shooter's plane
+            const float id = pixels_[4 * std::size_t(pixel) + 2];
+            if (id > 0.5f || id < -0.5f) {
+                const Polygon& q = scene_->polygons[std::uint32_t(std::abs(id)) - 1];
+                const double along = glm::dot(d, q.normal);
+                if (along != 0) {
+                    const double t = glm::dot(q.v[0] - eye, q.normal) / along; // in units of d
+                    if (t < 1 - 1e-6) continue; // something nearer covers it: occluded
+                }
+            }
+            const double f = point_to_polygon_ff(centre, poly.normal, corners,
+                                                 shooter.geometry.count);
+            if (f <= 0) continue;
+            Link l;
+            l.receiver = {p, 0, 0};
+            l.ff = l.ff_analytic = float(f);
+            links.push_back(l);
+            ++missed_linked_;
         }
     }
 
@@ -277,7 +319,8 @@ private:
     std::vector<gpu::HemicubeLayout> layouts_;
     std::vector<std::uint64_t> base_;
     std::vector<float> pixels_, pixel_sum_, analytic_, area_;
-    std::vector<std::uint32_t> seen_, below_seen_;
+    std::vector<std::uint32_t> seen_, below_seen_, polygon_seen_;
+    long missed_linked_ = 0; ///< polygons linked by link_missed_polygons, for statistics
     std::vector<PatchAddress> touched_, fillers_;
     std::vector<double> filler_values_;
     std::vector<Timing> timings_;

@@ -143,7 +143,7 @@ std::vector<SolutionOption> solution_options(const SolverOptions& o) {
         {"--shooter-size", hex(o.shooter_min_size)},
         {"--shooter-max-size", hex(o.shooter_max_size)},
         {"--flat", b(o.flat)},
-        {"--row-guard", b(o.row_guard)},
+        {"--no-row-guard", b(!o.row_guard)}, // the command line's spelling of the switch
         {"--enclosed-fraction", hex(o.enclosed_fraction)},
         {"--resolution", std::to_string(g.resolution)},
         {"--min-resolution", std::to_string(g.min_resolution)},
@@ -193,7 +193,11 @@ void apply_solution_option(SolverOptions& o, const SolutionOption& option,
     else if (name == "--shooter-size") dbl(o.shooter_min_size);
     else if (name == "--shooter-max-size") dbl(o.shooter_max_size);
     else if (name == "--flat") boolean(o.flat);
-    else if (name == "--row-guard") boolean(o.row_guard);
+    else if (name == "--no-row-guard") {
+        bool off = false;
+        boolean(off);
+        o.row_guard = !off;
+    }
     else if (name == "--enclosed-fraction") dbl(o.enclosed_fraction);
     else if (name == "--resolution") integer(g.resolution);
     else if (name == "--min-resolution") integer(g.min_resolution);

@@ -3,24 +3,14 @@
 #include <iostream>
 
 #include "commands.h"
+#include "hemirad/cli_options.h"
 #include "hemirad/json.h"
 
 namespace hemirad::cli {
 
-void add_scene_options(ArgParser& args, BuiltinOptions& o) {
-    args.section("built-in scenes");
-    args.option("--subdiv", &o.subdiv, "N",
-                "cube, furnace: split each face into NxN polygons (1..1000)");
-    args.option("--rho", &o.rho, "R",
-                "reflectance of every surface, in [0,1); negative = the scene's own");
-    args.option("--rings", &o.sphere_rings, "N", "sphere: latitude rings (4..512)");
-}
+void add_scene_options(ArgParser& args, BuiltinOptions& o) { add_builtin_scene_options(args, o); }
 
-void print_warnings(const Scene& scene, bool quiet) {
-    if (quiet) return;
-    for (const std::string& w : scene.warnings)
-        std::fprintf(stderr, "hemirad: warning: %s: %s\n", scene.source.c_str(), w.c_str());
-}
+void print_warnings(const Scene& scene, bool quiet) { print_scene_warnings("hemirad", scene, quiet); }
 
 int cmd_scene(int argc, char** argv) {
     std::string name;

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "hemirad/cli_options.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/json.h"
@@ -64,44 +65,7 @@ int cmd_solve(int argc, char** argv) {
                    "Solves the radiosity of a scene by progressive shooting until the error\n"
                    "bound falls under the tolerance, then writes what was asked for.");
     args.positional("SCENE", &scene_name, "OBJ file or built-in scene (cornell, cube, furnace, sphere)");
-    args.section("solver");
-    args.option("--ff", &so.ff, "METHOD",
-                "form factors: hybrid, analytic, hemicube (GPU); reference, pdm, sr (CPU)");
-    args.option("--tolerance", &so.tolerance, "T",
-                "stop when the error bound is under T times the emitted power");
-    args.option("--max-shots", &so.max_shots, "N", "stop after N shots");
-    args.option("--time-limit", &so.time_limit, "S", "stop after S seconds (0 = no limit)");
-    args.option("--patch-size", &so.hierarchy.patch_size, "S",
-                "leaf patch size in scene units (0 = scene diagonal / 64)");
-    args.option("--max-depth", &so.hierarchy.max_depth, "D", "deepest quadtree level (0..11)");
-    args.option("--shooter-power", &so.shooter_power_fraction, "F",
-                "shooter descent stops before a child with less than F of the unshot power");
-    args.option("--shooter-size", &so.shooter_min_size, "S",
-                "shooter descent stops before a child smaller than S (0 = half a leaf)");
-    args.flag("--flat", &so.flat, "shoot from leaf patches only (no hierarchy)");
-    args.flag("--row-guard", &so.row_guard, "rescale a shot whose form-factor row sum exceeds 1");
-    args.option("--enclosed-fraction", &so.enclosed_fraction, "F",
-                "shoot the children of a shooter whose hemisphere is more than F backs of "
-                "polygons");
-    args.section("form factors");
-    args.option("--resolution", &so.provider.gpu.resolution, "N",
-                "GPU: fixed hemicube resolution (0 = adaptive)");
-    args.option("--min-resolution", &so.provider.gpu.min_resolution, "N",
-                "GPU: adaptive resolution for the weakest shooters");
-    args.option("--max-resolution", &so.provider.gpu.max_resolution, "N",
-                "GPU: adaptive resolution for the strongest shooters");
-    args.option("--lod-bias", &so.provider.gpu.lod_bias, "B",
-                "GPU: mip LOD bias (+1 links patches twice as large)");
-    args.flag("--atan-angle", &so.provider.gpu.atan_angle,
-              "GPU: GLSL atan(|a x b|, a.b) for angles (most precise)");
-    args.flag("--builtin-acos", &so.provider.gpu.builtin_acos,
-              "GPU: GLSL acos instead of the 2048-entry lookup table");
-    args.option("--backend", &so.provider.gpu.backend, "NAME", "GL backend: auto, egl, osmesa");
-    args.option("--device", &so.provider.gpu.device, "N", "EGL device index (-1 = default)");
-    args.option("--link-angle", &so.provider.cpu.link_angle, "A",
-                "CPU: refine receivers while size/distance exceeds A");
-    args.option("--visibility-samples", &so.provider.cpu.visibility_samples, "N",
-                "reference: NxN shooter points for ray-cast visibility");
+    add_solver_options(args, so);
     args.section("output");
     args.option("--report", &report, "FILE.json", "write a JSON report");
     args.option("--log", &log, "FILE.jsonl", "write one JSON line per shot");

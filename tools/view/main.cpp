@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "../../src/output/draw.h"
-#include "../preview/common.h"
+#include "hemirad/cli_options.h"
 #include "hemirad/error.h"
 #include "hemirad/image.h"
 #include "hemirad/render.h"
@@ -281,8 +281,8 @@ int run(int argc, char** argv) {
                 "... once N shots are done (solving stops there)");
     args.option("--frames", &o.frames, "K", "... at frame K (without --screenshot: exit)");
     args.flag("--quiet", &o.quiet, "print nothing but errors");
-    tool::add_solver_options(args, so);
-    tool::add_builtin_scene_options(args, builtin);
+    add_solver_options(args, so);
+    add_builtin_scene_options(args, builtin);
     if (!args.parse(argc, argv)) return 0;
     validate(o, args);
     std::optional<Camera> user_camera;
@@ -291,7 +291,7 @@ int run(int argc, char** argv) {
 
     // Load the scene before opening a window: a bad scene is an error message, not a window.
     const Scene scene = load_scene(o.scene, builtin);
-    tool::print_scene_warnings(kTool, scene, o.quiet);
+    print_scene_warnings(kTool, scene, o.quiet);
 
     glfwSetErrorCallback(on_glfw_error);
     if (!glfwInit())

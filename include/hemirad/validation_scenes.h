@@ -1,0 +1,70 @@
+// Scenes for validation (CIE 171:2006 test cases that apply to a diffuse radiosity engine)
+// and for benchmarks (paper 002 §5's rooms), built in code so that tests and the benchmark
+// need no files. The geometry is exposed as constants so that a test computes its reference
+// from the same numbers the scene was built from.
+//
+// Frame of the CIE rooms: y is up; the room is [0, W] x [0, H] x [0, D] (x, y, z) in metres;
+// every surface faces into the room.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "hemirad/scene.h"
+
+namespace hemirad::validation {
+
+/// An axis-aligned rectangle in a plane of constant y: [x0, x1] x [z0, z1] at height y.
+struct HorizontalRect {
+    double x0, x1, z0, z1, y;
+};
+
+/// The CIE 171 test room (reconstructed: 4 m x 4 m floor, 3 m high).
+struct CieRoom {
+    static constexpr double width = 4.0;  ///< along x [m]
+    static constexpr double depth = 4.0;  ///< along z [m]
+    static constexpr double height = 3.0; ///< along y [m]
+};
+
+/// CIE 171 test 5.3: a 1 m x 1 m Lambertian area source centred in the ceiling, flush with
+/// it (the ceiling is built as a frame of four rectangles around it, so nothing overlaps).
+/// Every surface is black (rho = 0): only direct light. The source emits `exitance`
+/// [W m^-2, or lm m^-2 for illuminance in lux]. Groups: floor, ceiling, wall_x0, wall_x1,
+/// wall_z0, wall_z1, source.
+constexpr HorizontalRect kCie53Source{1.5, 2.5, 1.5, 2.5, CieRoom::height};
+Scene make_cie53_area_source(double exitance = 1000.0);
+
+/// CIE 171 tests 5.6 and 5.7: light reflected from a uniformly lit diffuse floor. The
+/// floor's reflected exitance rho*E_floor is modelled as emission (a Lambertian emitter of
+/// exitance `floor_exitance`), every other surface black, so a point on a wall or the
+/// ceiling receives floor_exitance * F(point -> visible floor).
+/// With `obstruction` (test 5.7): a black horizontal square plate (zero thickness, facing
+/// up; its back occludes as well) at kCie57Plate, between the floor and the measurement
+/// points. Groups as in 5.3 without the source, plus "plate".
+constexpr double kCie56FloorReflectance = 0.30;
+constexpr double kCie56FloorIlluminance = 500.0; ///< E_floor [lx]; exitance = rho*E = 150
+constexpr HorizontalRect kCie57Plate{1.5, 2.5, 1.5, 2.5, 1.0};
+Scene make_cie56_lit_floor(double floor_exitance, bool obstruction);
+
+/// CIE 171 test 5.8: inter-reflection in a closed cube of side `side` [m], every surface of
+/// reflectance `rho` (the source too), with a 1 m x 1 m source of `exitance` centred in the
+/// ceiling (flush: the ceiling is a frame around it). Groups: floor, ceiling, walls, source.
+Scene make_cie58_cube(double rho, double side = 4.0, double exitance = 1000.0);
+
+/// A furnished room in the manner of paper 002 §5 (Figure 3): walls, floor, ceiling,
+/// rectangular lights under the ceiling, and "sets" of one table (top + 4 legs) with four
+/// chairs (seat, back, 4 legs), each part a box of 6 quads, plus `cabinets` extra boxes
+/// along the walls. Polygons = 6 + lights + 174*sets + 6*cabinets; deterministic.
+///   room402:  sets = 2,  lights = 6, cabinets = 7   -> 402 polygons
+///   scene3138: sets = 17, lights = 6, cabinets = 28 -> 3138 polygons
+struct BenchRoomOptions {
+    int sets = 2;        ///< table-and-chairs sets (>= 0)
+    int lights = 6;      ///< ceiling lights (>= 1)
+    int cabinets = 7;    ///< extra boxes along the walls (>= 0)
+    double rho = 0.6;    ///< reflectance of walls, ceiling and furniture (floor 0.3)
+};
+Scene make_bench_room(const BenchRoomOptions& options = {});
+/// Polygon count that make_bench_room(options) produces.
+int bench_room_polygons(const BenchRoomOptions& options);
+
+} // namespace hemirad::validation

@@ -1,0 +1,410 @@
+// hemirad-bench: timings of the solver on paper 002's scenes (§5), the Cornell box to a 1 %
+// error bound (hierarchical vs flat shooting, hemicube vs analytic vs hybrid form factors),
+// the per-shot breakdown, the bare hemicube cost, and scaling curves. Not a test: it prints
+// a table and writes JSON (bench/README.md says what each experiment is).
+//
+// Every experiment runs in a child process (this program re-invoked with --child --only
+// NAME), so that its peak memory (VmHWM) is its own; the child prints one "JSON {...}" line
+// and one "ROW ..." line on stdout, which the parent collects.
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <glad/gl.h>
+
+#include "hemirad/args.h"
+#include "hemirad/error.h"
+#include "hemirad/gl/context.h"
+#include "hemirad/json.h"
+#include "hemirad/scene_io.h"
+#include "hemirad/solver.h"
+#include "hemirad/validation_scenes.h"
+
+// The bare hemicube is measured with the renderer itself where the build exposes src/ to
+// this tool (target_include_directories(hemirad-bench PRIVATE src)); otherwise from the
+// provider's own render/readback phases of the same shots.
+#if __has_include("gpu/hemicube.h")
+#include "gpu/hemicube.h"
+#define HEMIRAD_BENCH_BARE_RENDERER 1
+#else
+#define HEMIRAD_BENCH_BARE_RENDERER 0
+#endif
+
+using namespace hemirad;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Peak resident set of this process [MiB] (VmHWM; ru_maxrss as the fallback).
+double peak_rss_mib() {
+    std::ifstream f("/proc/self/status");
+    std::string line;
+    while (std::getline(f, line))
+        if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) / 1024.0;
+    rusage ru{};
+    getrusage(RUSAGE_SELF, &ru);
+    return double(ru.ru_maxrss) / 1024.0;
+}
+
+std::uint64_t leaves_for(const Scene& scene, double patch_size, int max_depth) {
+    HierarchyOptions ho;
+    ho.patch_size = patch_size;
+    ho.max_depth = max_depth;
+    const Discretisation d = discretise(scene, ho);
+    std::uint64_t n = 0;
+    for (std::uint8_t depth : d.depth) n += std::uint64_t(1) << (2 * depth);
+    return n;
+}
+
+// The patch size whose leaf count is nearest `target` (log scale), by bisection on log size.
+double patch_size_for(const Scene& scene, double target, int max_depth) {
+    double lo = 1e-4 * scene.bounds().diagonal(), hi = scene.bounds().diagonal();
+    for (int i = 0; i < 60; ++i) {
+        const double mid = std::sqrt(lo * hi);
+        if (double(leaves_for(scene, mid, max_depth)) > target) lo = mid;
+        else hi = mid;
+    }
+    // Leaf counts jump in factors of ~4 per polygon: take the nearer of the two sides.
+    const double a = double(leaves_for(scene, lo, max_depth));
+    const double b = double(leaves_for(scene, hi, max_depth));
+    return std::abs(std::log(a / target)) < std::abs(std::log(b / target)) ? lo : hi;
+}
+
+struct Spec {
+    std::string name, description;
+    std::function<Scene()> scene;
+    double target_leaves = 0;  ///< leaf patches to aim for
+    int max_depth = 8;
+    long shots = 0;            ///< fixed number of shots (0: solve to the tolerance)
+    double tolerance = 0.01;
+    double time_limit = 0;     ///< [s], 0 = none
+    std::string ff = "hybrid";
+    bool flat = false;
+    int resolution = 0;        ///< fixed hemicube resolution (0 = adaptive)
+    double paper_seconds = 0, goal_seconds = 0;
+    bool overhead = false;     ///< also measure the bare hemicube (shot_overhead_ratio)
+};
+
+validation::BenchRoomOptions room402() { return {2, 6, 7, 0.6}; }
+validation::BenchRoomOptions room3138() { return {17, 6, 28, 0.6}; }
+
+std::vector<Spec> experiments() {
+    std::vector<Spec> v;
+    const auto room = [](validation::BenchRoomOptions o) {
+        return [o] { return validation::make_bench_room(o); };
+    };
+    const auto cornell = [] { return make_builtin("cornell"); };
+    v.push_back({"room402", "paper 002 Fig. 3(a): 402 polygons, >47,000 patches, 16 shots",
+                 room(room402()), 47500, 8, 16, 0.01, 0, "hybrid", false, 0, 2.7, 1.0});
+    v.push_back({"scene3138", "paper 002 Fig. 3(b): 3138 polygons, ~90,000 patches, 32 shots",
+                 room(room3138()), 90000, 8, 32, 0.01, 0, "hybrid", false, 0, 9.0, 3.0});
+    v.push_back({"shot_overhead", "room402, fixed resolution 256: whole shot vs bare hemicube",
+                 room(room402()), 47500, 8, 16, 0.01, 0, "hybrid", false, 256, 0, 0, true});
+    const double cornell_leaves = 50000;
+    v.push_back({"cornell_hierarchical", "Cornell box, ~50k leaves, to a 1 % bound, hybrid",
+                 cornell, cornell_leaves, 8, 0, 0.01, 60, "hybrid"});
+    v.push_back({"cornell_flat", "as cornell_hierarchical, shooting from leaves only",
+                 cornell, cornell_leaves, 8, 0, 0.01, 60, "hybrid", true});
+    v.push_back({"cornell_hemicube", "as cornell_hierarchical, classic hemicube form factors",
+                 cornell, cornell_leaves, 8, 0, 0.01, 60, "hemicube"});
+    v.push_back({"cornell_analytic", "as cornell_hierarchical, analytic form factors",
+                 cornell, cornell_leaves, 8, 0, 0.01, 60, "analytic"});
+    // Scaling: seconds per shot vs leaf patches at 402 polygons...
+    for (int e = 3; e <= 6; ++e)
+        v.push_back({"scale_patches_1e" + std::to_string(e),
+                     "room402 at ~1e" + std::to_string(e) + " leaf patches, 16 shots",
+                     room(room402()), std::pow(10.0, e), 11, 16});
+    // ...and vs polygons at ~100,000 leaf patches.
+    const struct { int sets, cabinets; } poly[] = {{0, 7}, {2, 7}, {6, 12}, {17, 28}, {40, 40}};
+    for (const auto& p : poly) {
+        const validation::BenchRoomOptions o{p.sets, 6, p.cabinets, 0.6};
+        v.push_back({"scale_polygons_" + std::to_string(validation::bench_room_polygons(o)),
+                     "bench room of " + std::to_string(validation::bench_room_polygons(o)) +
+                         " polygons at ~1e5 leaf patches, 16 shots",
+                     room(o), 1e5, 11, 16});
+    }
+    return v;
+}
+
+struct Sums {
+    double select = 0, push_pull = 0, ff = 0, update = 0, render = 0, readback = 0, reduce = 0;
+    double links = 0;
+};
+
+// Runs one experiment in this process; prints "JSON ..." and "ROW ..." lines on stdout.
+void run_child(const Spec& spec) {
+    auto context = gl::Context::create();
+    const auto t_scene = Clock::now();
+    const Scene scene = spec.scene();
+    SolverOptions so;
+    so.ff = spec.ff;
+    so.flat = spec.flat;
+    so.tolerance = spec.shots ? 1e-9 : spec.tolerance;
+    so.max_shots = spec.shots ? spec.shots : 1000000;
+    so.time_limit = spec.time_limit;
+    so.hierarchy.max_depth = spec.max_depth;
+    so.hierarchy.patch_size = patch_size_for(scene, spec.target_leaves, spec.max_depth);
+    so.provider.gpu.use_current_context = true;
+    so.provider.gpu.resolution = spec.resolution;
+    const double scene_seconds = since(t_scene);
+    const auto t_setup = Clock::now();
+    Solver solver(scene, so);
+    const double setup_seconds = since(t_setup);
+
+    Sums sum;
+    std::vector<Shooter> shooters; // for the bare hemicube
+    while (solver.step()) {
+        const ShotRecord& r = solver.last_shot();
+        sum.select += r.t_select;
+        sum.push_pull += r.t_push_pull;
+        sum.ff += r.t_form_factors;
+        sum.update += r.t_update;
+        sum.links += double(r.links);
+        for (const auto& p : r.ff_phases) {
+            if (!std::strcmp(p.phase, "render")) sum.render += p.seconds;
+            else if (!std::strcmp(p.phase, "readback")) sum.readback += p.seconds;
+            else if (!std::strcmp(p.phase, "reduce")) sum.reduce += p.seconds;
+        }
+        if (spec.overhead) {
+            Shooter s;
+            s.address = r.shooter;
+            const Polygon& poly = scene.polygons[r.shooter.polygon];
+            s.geometry = patch_geometry(poly, r.shooter.level, r.shooter.index);
+            s.normal = poly.normal;
+            s.unshot_power = r.shooter_power;
+            shooters.push_back(s);
+        }
+    }
+    const long shots = solver.shots();
+    const double seconds = solver.seconds();
+
+    Json j = Json::object();
+    j["name"] = spec.name;
+    j["description"] = spec.description;
+    j["polygons"] = scene.polygons.size();
+    j["leaf_patches"] = solver.hierarchy().leaf_count();
+    j["shots"] = shots;
+    j["seconds"] = seconds;
+    j["error_bound"] = solver.error_bound();
+    j["stop"] = to_string(solver.stop_reason());
+    j["ff"] = spec.ff;
+    j["flat"] = spec.flat;
+    j["resolution"] = spec.resolution ? Json(spec.resolution) : Json("adaptive 64..256");
+    j["patch_size"] = so.hierarchy.patch_size;
+    j["max_depth"] = so.hierarchy.max_depth;
+    j["seconds_per_shot"] = shots ? seconds / double(shots) : 0.0;
+    j["setup_seconds"] = setup_seconds;
+    j["scene_seconds"] = scene_seconds;
+    j["links_per_shot"] = shots ? sum.links / double(shots) : 0.0;
+    Json b = Json::object(); // totals over the shots [s]
+    b["select"] = sum.select;
+    b["push_pull"] = sum.push_pull;
+    b["form_factors"] = sum.ff;
+    b["ff_render"] = sum.render;
+    b["ff_readback"] = sum.readback;
+    b["ff_reduce"] = sum.reduce;
+    b["update"] = sum.update;
+    j["breakdown"] = b;
+    if (spec.paper_seconds > 0) {
+        j["paper002_seconds"] = spec.paper_seconds;
+        j["paper002_hardware"] = "GeForce FX 5900";
+        j["goal_seconds"] = spec.goal_seconds;
+    }
+
+    double ratio = 0;
+    if (spec.overhead && shots > 0) {
+        // Bare hemicube at the same resolution, same shooters, same process: render (with a
+        // glFinish, so that the rasterisation is counted here) and read back.
+        double bare_render = 0, bare_readback = 0;
+        const char* method = "provider_phases";
+#if HEMIRAD_BENCH_BARE_RENDERER
+        method = "HemicubeRenderer";
+        gpu::HemicubeRenderer renderer(scene, solver.hierarchy().discretisation(),
+                                       spec.resolution);
+        const gpu::HemicubeLayout layout = gpu::make_hemicube_layout(spec.resolution);
+        std::vector<float> rgba;
+        renderer.render(shooters.front(), layout, 0.0, false); // first-draw code generation
+        renderer.read_back(layout, rgba);
+        for (const Shooter& s : shooters) {
+            auto t0 = Clock::now();
+            renderer.render(s, layout, 0.0, false);
+            glFinish();
+            bare_render += since(t0);
+            t0 = Clock::now();
+            renderer.read_back(layout, rgba);
+            bare_readback += since(t0);
+        }
+#else
+        bare_render = sum.render;
+        bare_readback = sum.readback;
+#endif
+        ratio = seconds / (bare_render + bare_readback);
+        Json o = Json::object();
+        o["method"] = method;
+        o["resolution"] = spec.resolution;
+        o["bare_render_seconds"] = bare_render;
+        o["bare_readback_seconds"] = bare_readback;
+        o["bare_per_shot"] = (bare_render + bare_readback) / double(shots);
+        o["shot_per_shot"] = seconds / double(shots);
+        o["ratio"] = ratio;
+        j["overhead"] = o;
+    }
+    j["peak_rss_mib"] = peak_rss_mib();
+
+    std::printf("JSON %s\n", j.dump(0).c_str());
+    if (spec.overhead) std::printf("RATIO %.17g\n", ratio);
+    const double n = shots ? double(shots) : 1.0;
+    std::printf("ROW %-22s %6zu %9llu %6ld %8.3f %8.2f %9.2e %6.1f %6.1f %6.1f %6.1f %6.1f %6.1f "
+                "%6.1f %7.0f %s\n",
+                spec.name.c_str(), scene.polygons.size(),
+                (unsigned long long)solver.hierarchy().leaf_count(), shots, seconds,
+                1e3 * seconds / n, solver.error_bound(), 1e3 * sum.select / n,
+                1e3 * sum.push_pull / n, 1e3 * sum.render / n, 1e3 * sum.readback / n,
+                1e3 * sum.reduce / n, 1e3 * sum.update / n, 1e3 * setup_seconds,
+                peak_rss_mib(),
+                spec.paper_seconds > 0 ? ("paper " + std::to_string(spec.paper_seconds).substr(0, 3) +
+                                          " s, goal " + std::to_string(spec.goal_seconds).substr(0, 3) + " s")
+                                             .c_str()
+                                       : "");
+    std::fflush(stdout);
+}
+
+std::vector<std::string> split(const std::string& s) {
+    std::vector<std::string> out;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, ','))
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+std::string self_path() {
+    char buf[4096];
+    const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+    if (n <= 0) throw RuntimeError("hemirad-bench: cannot read /proc/self/exe");
+    buf[n] = 0;
+    return buf;
+}
+
+const char* kHeader =
+    "experiment             polys    leaves  shots  total s  ms/shot  err bound  sel/ms pp/ms "
+    "rend/ms read/ms red/ms upd/ms setup/ms  RSS MiB";
+
+int run(int argc, char** argv) {
+    std::string out = "bench.json", only;
+    bool quiet = false, child = false;
+    ArgParser args("hemirad-bench", "hemirad-bench [options]",
+                   "Benchmarks the solver (paper 002's scenes, the Cornell box, scaling).\n"
+                   "Each experiment runs in its own process (peak memory per experiment).");
+    args.option("--out", &out, "FILE", "write the results as JSON to FILE");
+    args.option("--only", &only, "NAME,...", "run only these experiments (default: all)");
+    args.flag("--quiet", &quiet, "print nothing but errors");
+    args.flag("--child", &child, "internal: run the experiments in this process");
+    if (!args.parse(argc, argv)) return 0;
+
+    const std::vector<Spec> all = experiments();
+    std::vector<const Spec*> chosen;
+    if (only.empty()) {
+        for (const Spec& s : all) chosen.push_back(&s);
+    } else {
+        for (const std::string& name : split(only)) {
+            auto it = std::find_if(all.begin(), all.end(),
+                                   [&](const Spec& s) { return s.name == name; });
+            if (it == all.end()) {
+                std::string names;
+                for (const Spec& s : all) names += (names.empty() ? "" : ", ") + s.name;
+                throw InputError("--only: unknown experiment '" + name + "' (known: " + names +
+                                 ")");
+            }
+            chosen.push_back(&*it);
+        }
+    }
+    if (child) {
+        for (const Spec* s : chosen) run_child(*s);
+        return 0;
+    }
+
+    if (!quiet) {
+        auto context = gl::Context::create();
+        std::fprintf(stderr, "hemirad-bench: OpenGL %s: %s (%s)\n",
+                     context->backend_name().c_str(), context->renderer().c_str(),
+                     context->vendor().c_str());
+    }
+    const std::string self = self_path();
+    std::vector<std::string> jsons, rows;
+    double ratio = 0;
+    const auto t_all = Clock::now();
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+        const Spec& s = *chosen[i];
+        if (!quiet)
+            std::fprintf(stderr, "[%zu/%zu] %s: %s ...\n", i + 1, chosen.size(), s.name.c_str(),
+                         s.description.c_str());
+        const auto t0 = Clock::now();
+        const std::string cmd = "'" + self + "' --child --only " + s.name;
+        FILE* p = popen(cmd.c_str(), "r");
+        if (!p) throw RuntimeError("hemirad-bench: cannot run " + cmd);
+        char line[1 << 16];
+        bool got = false;
+        while (std::fgets(line, sizeof line, p)) {
+            std::string l(line);
+            while (!l.empty() && (l.back() == '\n' || l.back() == '\r')) l.pop_back();
+            if (l.rfind("JSON ", 0) == 0) jsons.push_back(l.substr(5)), got = true;
+            else if (l.rfind("RATIO ", 0) == 0) ratio = std::atof(l.c_str() + 6);
+            else if (l.rfind("ROW ", 0) == 0) {
+                rows.push_back(l.substr(4));
+                if (!quiet) std::fprintf(stderr, "    %s\n", l.c_str() + 4);
+            }
+        }
+        const int status = pclose(p);
+        if (status != 0 || !got)
+            throw RuntimeError("hemirad-bench: experiment " + s.name + " failed (status " +
+                               std::to_string(status) + ")");
+        if (!quiet)
+            std::fprintf(stderr, "    done in %.1f s (%.0f s so far)\n", since(t0),
+                         since(t_all));
+    }
+    std::string doc = "{\n  \"program\": \"hemirad-bench\",\n  \"shot_overhead_ratio\": ";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.6g", ratio);
+    doc += ratio > 0 ? buf : "null";
+    doc += ",\n  \"experiments\": [\n";
+    for (std::size_t i = 0; i < jsons.size(); ++i)
+        doc += "    " + jsons[i] + (i + 1 < jsons.size() ? ",\n" : "\n");
+    doc += "  ]\n}\n";
+    std::ofstream f(out, std::ios::trunc);
+    if (!(f << doc)) throw RuntimeError("hemirad-bench: cannot write " + out);
+    if (!quiet) {
+        std::printf("%s\n", kHeader);
+        for (const std::string& r : rows) std::printf("%s\n", r.c_str());
+        if (ratio > 0) std::printf("shot_overhead_ratio %.3f\n", ratio);
+        std::printf("wrote %s (%.0f s)\n", out.c_str(), since(t_all));
+    }
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "hemirad-bench: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "hemirad-bench: %s\n", e.what());
+        return 1;
+    }
+}
