@@ -1,5 +1,7 @@
 #include "hemirad/readout.h"
 
+#include "ff/bvh.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -30,25 +32,7 @@ bool polygon_uv(const Polygon& poly, const dvec3& p, double& u, double& v, doubl
         v = (a.x * q.y - a.y * q.x) / det;
         return u >= -slack && v >= -slack && u + v <= 1 + slack;
     }
-    // Inverse bilinear map in 2D: P(u,v) = p0 + u*b1 + v*b2 + u*v*b3 (p0 = origin).
-    const glm::dvec2 p1 = to2(poly.v[1]), p2 = to2(poly.v[2]), p3 = to2(poly.v[3]);
-    const glm::dvec2 b1 = p1, b2 = p3, b3 = p2 - p1 - p3;
-    const auto cross2 = [](glm::dvec2 a, glm::dvec2 b) { return a.x * b.y - a.y * b.x; };
-    // Solve for v: A v^2 + B v + C = 0.
-    const double A = cross2(b2, b3);
-    const double B = cross2(b3, q) - cross2(b1, b2);
-    const double C = cross2(b1, q);
-    const double scale = std::max(std::abs(B), 1e-300);
-    if (std::abs(A) < 1e-12 * scale) {
-        v = -C / B;
-    } else {
-        const double disc = std::sqrt(std::max(0.0, B * B - 4 * A * C));
-        const double r1 = (-B + disc) / (2 * A), r2 = (-B - disc) / (2 * A);
-        v = std::abs(r1 - 0.5) < std::abs(r2 - 0.5) ? r1 : r2;
-    }
-    const glm::dvec2 denom = b1 + v * b3;
-    u = std::abs(denom.x) > std::abs(denom.y) ? (q.x - v * b2.x) / denom.x
-                                              : (q.y - v * b2.y) / denom.y;
+    inverse_bilinear(poly.v[0], poly.v[1], poly.v[2], poly.v[3], poly.normal, p, u, v);
     return u >= -slack && v >= -slack && u <= 1 + slack && v <= 1 + slack;
 }
 
