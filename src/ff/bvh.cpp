@@ -42,8 +42,8 @@ bool ray_triangle(const dvec3& o, const dvec3& d, const dvec3& v0, const dvec3& 
 
 } // namespace
 
-void inverse_bilinear(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d,
-                      const dvec3& normal, const dvec3& p, double& u, double& v) {
+void inverse_bilinear_unclamped(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d,
+                                const dvec3& normal, const dvec3& p, double& u, double& v) {
     // 2D frame in the quad's plane: x along b-a, y = normal x x.
     const dvec3 ex = glm::normalize(b - a);
     const dvec3 ey = glm::cross(normal, ex);
@@ -88,6 +88,11 @@ void inverse_bilinear(const dvec3& a, const dvec3& b, const dvec3& c, const dvec
     }
     if (!std::isfinite(u)) u = 0;
     if (!std::isfinite(v)) v = 0;
+}
+
+void inverse_bilinear(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d,
+                      const dvec3& normal, const dvec3& p, double& u, double& v) {
+    inverse_bilinear_unclamped(a, b, c, d, normal, p, u, v);
     u = std::clamp(u, 0.0, 1.0);
     v = std::clamp(v, 0.0, 1.0);
 }

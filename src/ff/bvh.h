@@ -65,6 +65,10 @@ class Bvh {
     std::vector<std::uint32_t> order_; ///< leaf ranges index into this: polygon ids
 };
 
+/// The same without the clamp: outside the quad, the root nearest to it (for point location).
+void inverse_bilinear_unclamped(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d,
+                                const dvec3& normal, const dvec3& p, double& u, double& v);
+
 /// Inverse of the bilinear map of a planar quad, P(u,v) = (1-u)(1-v)a + u(1-v)b + uv c +
 /// (1-u)v d: the (u,v) of point `p` (assumed in the quad's plane), clamped to [0,1]^2.
 void inverse_bilinear(const dvec3& a, const dvec3& b, const dvec3& c, const dvec3& d,

@@ -32,7 +32,7 @@ bool polygon_uv(const Polygon& poly, const dvec3& p, double& u, double& v, doubl
         v = (a.x * q.y - a.y * q.x) / det;
         return u >= -slack && v >= -slack && u + v <= 1 + slack;
     }
-    inverse_bilinear(poly.v[0], poly.v[1], poly.v[2], poly.v[3], poly.normal, p, u, v);
+    inverse_bilinear_unclamped(poly.v[0], poly.v[1], poly.v[2], poly.v[3], poly.normal, p, u, v);
     return u >= -slack && v >= -slack && u <= 1 + slack && v <= 1 + slack;
 }
 
