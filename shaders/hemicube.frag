@@ -9,6 +9,8 @@
 // The mip level that GL selects from the patch-ID texture is the linking oracle: it picks the
 // quadtree depth whose patches cover about one hemicube pixel.
 
+layout(early_fragment_tests) in; // no depth writes or discards here: shade only the nearest
+
 in vec2 v_param;
 flat in int v_polygon;
 

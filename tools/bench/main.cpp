@@ -108,11 +108,11 @@ std::vector<Spec> experiments() {
     };
     const auto cornell = [] { return make_builtin("cornell"); };
     v.push_back({"room402", "paper 002 Fig. 3(a): 402 polygons, >47,000 patches, 16 shots",
-                 room(room402()), 47500, 8, 16, 0.01, 0, "hybrid", false, 0, 2.7, 1.0});
+                 room(room402()), 47500, 6, 16, 0.01, 0, "hybrid", false, 0, 2.7, 1.0});
     v.push_back({"scene3138", "paper 002 Fig. 3(b): 3138 polygons, ~90,000 patches, 32 shots",
                  room(room3138()), 90000, 8, 32, 0.01, 0, "hybrid", false, 0, 9.0, 3.0});
     v.push_back({"shot_overhead", "room402, fixed resolution 256: whole shot vs bare hemicube",
-                 room(room402()), 47500, 8, 16, 0.01, 0, "hybrid", false, 256, 0, 0, true});
+                 room(room402()), 47500, 6, 16, 0.01, 0, "hybrid", false, 256, 0, 0, true});
     const double cornell_leaves = 50000;
     v.push_back({"cornell_hierarchical", "Cornell box, ~50k leaves, to a 1 % bound, hybrid",
                  cornell, cornell_leaves, 8, 0, 0.01, 60, "hybrid"});
@@ -122,19 +122,21 @@ std::vector<Spec> experiments() {
                  cornell, cornell_leaves, 8, 0, 0.01, 60, "hemicube"});
     v.push_back({"cornell_analytic", "as cornell_hierarchical, analytic form factors",
                  cornell, cornell_leaves, 8, 0, 0.01, 60, "analytic"});
-    // Scaling: seconds per shot vs leaf patches at 402 polygons...
+    // Scaling: seconds per shot vs leaf patches at 402 polygons, at a fixed hemicube
+    // resolution (256) so that the pixels shaded stay the same and what grows is the
+    // geometry, the reduction and the update...
     for (int e = 3; e <= 6; ++e)
         v.push_back({"scale_patches_1e" + std::to_string(e),
-                     "room402 at ~1e" + std::to_string(e) + " leaf patches, 16 shots",
-                     room(room402()), std::pow(10.0, e), 11, 16});
+                     "room402 at ~1e" + std::to_string(e) + " leaf patches, 16 shots, res 256",
+                     room(room402()), std::pow(10.0, e), 11, 16, 0.01, 0, "hybrid", false, 256});
     // ...and vs polygons at ~100,000 leaf patches.
     const struct { int sets, cabinets; } poly[] = {{0, 7}, {2, 7}, {6, 12}, {17, 28}, {40, 40}};
     for (const auto& p : poly) {
         const validation::BenchRoomOptions o{p.sets, 6, p.cabinets, 0.6};
         v.push_back({"scale_polygons_" + std::to_string(validation::bench_room_polygons(o)),
                      "bench room of " + std::to_string(validation::bench_room_polygons(o)) +
-                         " polygons at ~1e5 leaf patches, 16 shots",
-                     room(o), 1e5, 11, 16});
+                         " polygons at ~1e5 leaf patches, 16 shots, res 256",
+                     room(o), 1e5, 11, 16, 0.01, 0, "hybrid", false, 256});
     }
     return v;
 }
