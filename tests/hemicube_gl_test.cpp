@@ -87,11 +87,11 @@ TEST_P(CubeAccuracy, FaceToFaceFormFactorsMeetTheBar) {
         EXPECT_NEAR(r.to[scene.find_group(g)] / kAdjacent - 1, 0, c.bar) << g;
     EXPECT_NEAR(r.to[scene.find_group("y+")] / kParallel - 1, 0, c.bar) << "y+";
     EXPECT_NEAR(r.row_sum, 1.0, c.bar) << "row sum";
-    // At depth 0 every receiver is one patch, linked at level 0 by both: the analytic modes
-    // evaluate the same midpoint rule as the CPU reference (double precision, exact
-    // visibility here) and must agree to float error, not just the bar. (At depth 1 the
-    // oracle links far receivers at level 0 and the reference's criterion differs.)
-    if (std::string(c.mode) != "hemicube" && c.depth == 0) {
+    // The analytic modes evaluate the same midpoint rule as the CPU reference (double
+    // precision, exact visibility here): they must agree to float error, not just the bar.
+    // (Measured: equal to 1e-7 at depth 0; 8e-6 relative at depth 1, where the two link
+    // some far receivers at different levels.)
+    if (std::string(c.mode) != "hemicube") {
         auto reference = make_provider("reference", scene, disc, {});
         const GroupFormFactors ref = group_form_factors(scene, disc, *reference, from);
         for (std::size_t g = 0; g < r.to.size(); ++g)
@@ -138,17 +138,20 @@ TEST_P(ShaderKernel, AnalyticValueMatchesClosedForm) {
     ASSERT_GT(glm::dot(scene.polygons[1].normal, dvec3(0) - scene.polygons[1].centroid()), 0)
         << "test setup: the shooter must face the receiver";
     const Discretisation disc = discretise(scene, {0, 0});
-    // Tolerances, relative: atan 3e-5 (float geometry); the table 3e-5 (float geometry and
-    // its own interpolation, measured in hemicube_layout_test); llvmpipe's GLSL acos is a
-    // polynomial good to about 1e-4, so 3e-4 (on a GPU it is better).
+    // Tolerances, relative. The table, indexed by the chord, is the most precise (measured
+    // 1.9e-7 at worst): 1e-6. llvmpipe's atan reaches 2e-5 (3e-5); its acos is a polynomial
+    // good to about 2e-4 (3e-4; on a GPU it is better).
     const char* names[3] = {"table", "acos", "atan"};
-    const double tolerance[3] = {3e-5, 3e-4, 3e-5};
+    const double tolerance[3] = {1e-6, 3e-4, 3e-5};
     for (int angle : {0, 1, 2}) {
         auto provider = gpu_provider("analytic", scene, disc, 256, angle);
         std::vector<Link> links;
         provider->shoot(whole_polygon_shooter(scene, 1), links);
         ASSERT_EQ(links.size(), 1u);
-        EXPECT_NEAR(links[0].ff_analytic / k.expected - 1, 0, tolerance[angle])
+        const double error = links[0].ff_analytic / k.expected - 1;
+        std::printf("%-14s %-5s F %.9f  Howell %.9f  relative error %+.2e\n", k.name,
+                    names[angle], double(links[0].ff_analytic), k.expected, error);
+        EXPECT_NEAR(error, 0, tolerance[angle])
             << names[angle] << ": " << links[0].ff_analytic << " vs " << k.expected;
     }
 }

@@ -148,14 +148,22 @@ int cmd_solve(int argc, char** argv) {
     if (!quiet)
         std::fprintf(stderr,
                      "hemirad: %s after %ld shots in %.2f s: error bound %.3e (tolerance %.3g), "
-                     "row sum %.4f..%.4f\n",
+                     "row sum %.4f..%.4f (%ld above 1 rescaled)\n",
                      was_interrupted ? "interrupted" : to_string(solver.stop_reason()),
                      solver.shots(), solver.seconds(), solver.error_bound(), so.tolerance,
-                     solver.row_sums().min, solver.row_sums().max);
+                     solver.row_sums().min, solver.row_sums().max, solver.row_sums().guarded);
 
     const std::vector<GridResult> grids = evaluate_grids(grid_specs, h, quiet);
-    if (!report.empty()) write_report(report, solver, scene, grids, exports.lux);
-    if (!probes_out.empty()) write_probes(probes_out, probes, h);
+    if (!report.empty()) {
+        write_report(report, solver, scene, grids, exports.lux);
+        if (!quiet) std::fprintf(stderr, "hemirad: wrote %s (JSON report)\n", report.c_str());
+    }
+    if (!probes_out.empty()) {
+        write_probes(probes_out, probes, h);
+        if (!quiet)
+            std::fprintf(stderr, "hemirad: wrote %s (irradiance at %zu probes)\n",
+                         probes_out.c_str(), probes.size());
+    }
     write_export_outputs(exports, grids, h, quiet);
     write_outputs(out, solver, quiet);
     if (was_interrupted) {
