@@ -12,6 +12,8 @@ layout(location = 2) uniform int patch_edges;  // 1: darken leaf edges
 layout(location = 3) uniform float scale;      // multiplies every value (display only)
 layout(location = 4) uniform int tone_map;     // 1: Reinhard + sRGB encode (for a window)
 layout(location = 5) uniform float reinhard_white; // white point in scaled units
+// Highlight pass (RenderOptions::highlight): alpha > 0 writes this colour as is, unscaled.
+layout(location = 6) uniform vec4 highlight;
 
 // Flat values: the leaf of each triangle (gl_PrimitiveID counts triangles from the start of the
 // single draw call), and RGB per leaf [W unit^-2], rewritten every frame.
@@ -37,6 +39,10 @@ vec3 srgb_encode(vec3 c) {
 }
 
 void main() {
+    if (highlight.a > 0.0) {
+        out_colour = highlight;
+        return;
+    }
     vec3 c;
     if (!gl_FrontFacing) {
         c = vec3(0.0); // the back of a polygon leaves no light

@@ -54,6 +54,18 @@ public:
     /// polygons in the last shoot(): near 1 when the shooter's centre is enclosed (under a
     /// box, behind a light), where a point-sampled shot would lose the patch's power.
     virtual double last_backface_fraction() const { return 0; }
+    /// The hemicube rendered by the last shoot() (GPU providers; for display and tests):
+    /// width x height RGBA floats, row 0 at the bottom (GL order), laid out as
+    /// gpu::HemicubeLayout (top face at (0,0) res x res, four half faces around it). Per
+    /// pixel: R the patch index within its level, G the level, B polygon + 1 (0: nothing;
+    /// -(polygon + 1): the back of a polygon), A the analytic form factor dA_j -> shooter.
+    /// Empty (rgba null) for providers without one, or before the first shot; valid until
+    /// the next shoot().
+    struct HemicubeImage {
+        int width = 0, height = 0; ///< [pixels]
+        const float* rgba = nullptr;
+    };
+    virtual HemicubeImage last_hemicube() const { return {}; }
     /// State that affects later shots (adaptive resolutions, ...), for save/resume
     /// (solution_file.h). Default: none. restore_state() gets what save_state() returned and
     /// throws InputError if it cannot be this provider's.

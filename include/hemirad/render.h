@@ -9,6 +9,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "hemirad/hierarchy.h"
@@ -36,6 +37,13 @@ struct RenderOptions {
     /// in the shader, for an 8-bit non-sRGB window framebuffer.
     double scale = 1.0;
     bool tone_map = false;
+    /// Mark one patch (the viewer's current shooter, Solver::last_shot().shooter): a
+    /// translucent tint and a 2-pixel outline in `highlight_colour`, drawn after the scene
+    /// and always on top (no depth test: a shooter behind a wall shows through it). The
+    /// colour is written as is (not scaled, not tone-mapped). Default: none. An address that
+    /// is not a patch of the scene draws nothing.
+    std::optional<PatchAddress> highlight;
+    dvec3 highlight_colour{1.0, 0.1, 0.9}; ///< display RGB in [0,1] (default magenta)
 };
 
 /// Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fov" (fov: vertical, degrees, in (0, 180)). Throws
@@ -70,6 +78,11 @@ public:
     /// viewport_width / viewport_height. Restores the GL state it changes.
     void draw(const Hierarchy& h, const Camera& camera, const RenderOptions& options,
               int viewport_width, int viewport_height);
+    /// Draws only the highlight of `patch` (as RenderOptions::highlight, on top, no depth
+    /// test) into the currently bound framebuffer and viewport: for a view drawn otherwise,
+    /// e.g. the viewer's CPU false-colour image. Restores the GL state it changes.
+    void draw_highlight(const Camera& camera, const PatchAddress& patch, const dvec3& colour,
+                        int viewport_width, int viewport_height);
 
     /// Statistics of the current geometry (after the first render/draw).
     struct Stats {

@@ -70,6 +70,12 @@ public:
     std::string name() const override { return name_; }
     std::vector<Timing> last_timings() const override { return timings_; }
     double last_backface_fraction() const override { return backface_; }
+    HemicubeImage last_hemicube() const override {
+        if (pixels_.size() < 4 * std::size_t(last_width_) * std::size_t(last_height_) ||
+            last_width_ <= 0)
+            return {};
+        return {last_width_, last_height_, pixels_.data()};
+    }
     /// The adaptive resolution depends on the strongest shooter so far: {max_power_}.
     std::vector<double> save_state() const override { return {max_power_}; }
     void restore_state(const std::vector<double>& state) override {
@@ -91,6 +97,8 @@ public:
         timings_.push_back({"render", since(t0)});
         t0 = Clock::now();
         renderer_->read_back(layout, pixels_);
+        last_width_ = layout.width;
+        last_height_ = layout.height;
         timings_.push_back({"readback", since(t0)});
         t0 = Clock::now();
         reduce(shooter, layout, links);
@@ -327,6 +335,7 @@ private:
     std::uint32_t stamp_ = 0;
     double max_power_ = 0;
     double backface_ = 0;
+    int last_width_ = 0, last_height_ = 0; ///< layout of pixels_ (last_hemicube())
 };
 
 } // namespace

@@ -122,6 +122,10 @@ public:
         glGetIntegerv(GL_DEPTH_FUNC, &depth_func_);
         glGetIntegerv(GL_FRONT_FACE, &front_face_);
         glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_);
+        glGetIntegerv(GL_BLEND_SRC_RGB, &blend_func_[0]);
+        glGetIntegerv(GL_BLEND_DST_RGB, &blend_func_[1]);
+        glGetIntegerv(GL_BLEND_SRC_ALPHA, &blend_func_[2]);
+        glGetIntegerv(GL_BLEND_DST_ALPHA, &blend_func_[3]);
         depth_test_ = glIsEnabled(GL_DEPTH_TEST);
         cull_ = glIsEnabled(GL_CULL_FACE);
         blend_ = glIsEnabled(GL_BLEND);
@@ -136,6 +140,8 @@ public:
         glDepthFunc(GLenum(depth_func_));
         glFrontFace(GLenum(front_face_));
         glDepthMask(depth_mask_);
+        glBlendFuncSeparate(GLenum(blend_func_[0]), GLenum(blend_func_[1]), GLenum(blend_func_[2]),
+                            GLenum(blend_func_[3]));
         set(GL_DEPTH_TEST, depth_test_);
         set(GL_CULL_FACE, cull_);
         set(GL_BLEND, blend_);
@@ -149,6 +155,7 @@ private:
     GLint draw_fb_ = 0, read_fb_ = 0, viewport_[4] = {}, program_ = 0, vao_ = 0;
     GLint clip_origin_ = GL_LOWER_LEFT, clip_depth_ = GL_NEGATIVE_ONE_TO_ONE;
     GLint depth_func_ = GL_LESS, front_face_ = GL_CCW;
+    GLint blend_func_[4] = {GL_ONE, GL_ZERO, GL_ONE, GL_ZERO}; ///< src/dst RGB, src/dst alpha
     GLboolean depth_mask_ = GL_TRUE, depth_test_ = GL_FALSE, cull_ = GL_FALSE, blend_ = GL_FALSE;
 };
 
@@ -270,6 +277,10 @@ struct SolutionRenderer::Impl {
     std::vector<glm::vec4> node_sums;    ///< (sum A B, sum A) per node
     std::vector<float> node_values;      ///< RGB per node
 
+    // The highlighted patch (RenderOptions::highlight): its 3 or 4 corners.
+    gl::Buffer highlight_vertices;
+    gl::VertexArray highlight_vao;
+
     // Offscreen target of render().
     int fb_width = 0, fb_height = 0;
     gl::Texture colour;
@@ -282,7 +293,10 @@ struct SolutionRenderer::Impl {
         if (!built || depths != h.discretisation().depth) build(h);
     }
     void compute_colours(const Hierarchy& h, const RenderOptions& o);
+    glm::mat4 view_projection(const Camera& camera, int width, int height) const;
     void draw_scene(const Camera& camera, const RenderOptions& o, int width, int height);
+    void draw_highlight(const Camera& camera, const PatchAddress& patch, const dvec3& colour,
+                        int width, int height);
 };
 
 void SolutionRenderer::Impl::build(const Hierarchy& h) {
@@ -469,13 +483,18 @@ void SolutionRenderer::Impl::compute_colours(const Hierarchy& h, const RenderOpt
     }
 }
 
-void SolutionRenderer::Impl::draw_scene(const Camera& camera, const RenderOptions& o, int width,
-                                        int height) {
+glm::mat4 SolutionRenderer::Impl::view_projection(const Camera& camera, int width,
+                                                  int height) const {
     const double aspect = double(std::max(width, 1)) / double(std::max(height, 1));
     const glm::dmat4 view = glm::lookAt(camera.eye - origin, camera.target - origin, camera.up);
     const double near = 1e-5 * diagonal;
-    const glm::mat4 vp = reversed_z_perspective(glm::radians(camera.fov_y_deg), aspect, near) *
-                         glm::mat4(view);
+    return reversed_z_perspective(glm::radians(camera.fov_y_deg), aspect, near) *
+           glm::mat4(view);
+}
+
+void SolutionRenderer::Impl::draw_scene(const Camera& camera, const RenderOptions& o, int width,
+                                        int height) {
+    const glm::mat4 vp = view_projection(camera, width, height);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_GREATER);
     glDepthMask(GL_TRUE);
@@ -494,7 +513,64 @@ void SolutionRenderer::Impl::draw_scene(const Camera& camera, const RenderOption
     glUniform1f(3, float(o.scale));
     glUniform1i(4, o.tone_map ? 1 : 0);
     glUniform1f(5, float(kReinhardWhite));
+    glUniform4f(6, 0.f, 0.f, 0.f, 0.f);
     glDrawElements(GL_TRIANGLES, GLsizei(index_count), GL_UNSIGNED_INT, nullptr);
+    if (o.highlight) draw_highlight(camera, *o.highlight, o.highlight_colour, width, height);
+}
+
+// The patch's polygon (tint, alpha kHighlightTint) and its outline (opaque), on top of whatever
+// is in the framebuffer: no depth test. Core profiles have no wide lines, so the one-pixel
+// outline is drawn four times with the viewport shifted by (0|1, 0|1) pixels: 2 pixels wide.
+void SolutionRenderer::Impl::draw_highlight(const Camera& camera, const PatchAddress& a,
+                                            const dvec3& colour, int width, int height) {
+    constexpr float kHighlightTint = 0.35f;
+    const Scene& s = *scene;
+    if (a.polygon >= s.polygons.size() || a.level > std::uint32_t(kMaxDepth) ||
+        !patch_valid(a.level, a.index))
+        return;
+    const PatchGeometry g = patch_geometry(s.polygons[a.polygon], a.level, a.index);
+    Vertex v[4] = {};
+    for (int k = 0; k < g.count; ++k) {
+        const dvec3 q = g.corners[std::size_t(k)] - origin;
+        v[k] = {{float(q.x), float(q.y), float(q.z)}, {0.f, 0.f, 0.f}, 0};
+    }
+    if (!highlight_vao) {
+        highlight_vertices = gl::Buffer::create();
+        highlight_vertices.storage(GLsizeiptr(sizeof v), nullptr, GL_DYNAMIC_STORAGE_BIT);
+        highlight_vao = gl::VertexArray::create();
+        highlight_vao.vertex_buffer(0, highlight_vertices, 0, sizeof(Vertex));
+        highlight_vao.attribute(0, 0, 3, GL_FLOAT, offsetof(Vertex, position));
+        highlight_vao.attribute(1, 0, 3, GL_FLOAT, offsetof(Vertex, grid));
+        glEnableVertexArrayAttrib(highlight_vao.id(), 2);
+        glVertexArrayAttribIFormat(highlight_vao.id(), 2, 1, GL_UNSIGNED_INT,
+                                   offsetof(Vertex, node));
+        glVertexArrayAttribBinding(highlight_vao.id(), 2, 0);
+    }
+    glNamedBufferSubData(highlight_vertices.id(), 0, GLsizeiptr(sizeof v), v);
+    const glm::mat4 vp = view_projection(camera, width, height);
+    GLint viewport[4] = {};
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    glDisable(GL_CULL_FACE);
+    glUseProgram(program.id());
+    glBindVertexArray(highlight_vao.id());
+    glUniformMatrix4fv(0, 1, GL_FALSE, glm::value_ptr(vp));
+    glUniform1i(1, 1); // "flat": the vertex shader reads no node colours; the fragment
+    glUniform1i(2, 0); // shader returns the highlight colour before any leaf lookup
+    const glm::vec3 c(colour);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+    glUniform4f(6, c.r, c.g, c.b, kHighlightTint);
+    glDrawArrays(GL_TRIANGLE_FAN, 0, g.count);
+    glDisable(GL_BLEND);
+    glUniform4f(6, c.r, c.g, c.b, 1.f);
+    for (int k = 0; k < 4; ++k) {
+        glViewport(viewport[0] + (k & 1), viewport[1] + (k >> 1), viewport[2], viewport[3]);
+        glDrawArrays(GL_LINE_LOOP, 0, g.count);
+    }
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 }
 
 SolutionRenderer::SolutionRenderer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
@@ -578,6 +654,13 @@ void SolutionRenderer::draw(const Hierarchy& h, const Camera& camera,
     glClearBufferfv(GL_COLOR, 0, bg);
     glClearBufferfv(GL_DEPTH, 0, &far_depth);
     m.draw_scene(camera, options, viewport_width, viewport_height);
+}
+
+void SolutionRenderer::draw_highlight(const Camera& camera, const PatchAddress& patch,
+                                      const dvec3& colour, int viewport_width,
+                                      int viewport_height) {
+    const StateGuard guard;
+    impl_->draw_highlight(camera, patch, colour, viewport_width, viewport_height);
 }
 
 } // namespace hemirad

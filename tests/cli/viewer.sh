@@ -2,6 +2,7 @@
 # hemirad-view under a virtual X server: a scripted screenshot of the Cornell box after 10 shots
 # has the window's size, is not blank, and matches the headless render of the same solution
 # (`hemirad solve --max-shots 10 -o`, same camera and size). Then: the status overlay draws,
+# the last shooter's outline and the hemicube inset (--highlight, --inset) draw,
 # a scene that fails to load is an error (no window, no crash), and --frames exits cleanly.
 #
 # CTest runs: bash viewer.sh <path to hemirad> <source dir>
@@ -35,6 +36,12 @@ xvfb-run -a "$view" cornell --screenshot overlay.png --after-shots 10 --width 32
     --no-ambient --show-help --quiet
 xvfb-run -a "$view" cornell --screenshot plain.png --after-shots 10 --width 320 --height 240 \
     --no-ambient --no-overlay --quiet
+# After one shot (the shooter: a patch of the light, in view) with and without the shooter's
+# outline and the hemicube inset (top right).
+xvfb-run -a "$view" cornell --screenshot one.png --after-shots 1 --width 320 --height 240 \
+    --no-ambient --no-overlay --quiet
+xvfb-run -a "$view" cornell --screenshot marked.png --after-shots 1 --width 320 --height 240 \
+    --no-ambient --no-overlay --highlight --inset --quiet
 # False colour with its legend.
 xvfb-run -a "$view" cornell --screenshot false.png --after-shots 10 --width 320 --height 240 \
     --false-colour --no-overlay --quiet
@@ -109,6 +116,21 @@ assert changed(range(240 - 14, 240)) >= 10, "no status line at the bottom"
 assert changed(range(0, 20)) >= 10, "no help panel at the top"
 mid = [r[3 * 200:3 * 300] for r in over[130:200]], [r[3 * 200:3 * 300] for r in plain[130:200]]
 assert mid[0] == mid[1], "the overlay changed the middle of the image"
+
+# The inset: the top right corner (two 4:3 panels, at most 45% of the width) differs in most
+# pixels (measured: 77%; black where the box's open front is, over the black ceiling, is
+# unchanged); the outline: elsewhere, some pixels turn magenta (the highlight colour).
+_, _, one = read_png("one.png")
+_, _, marked = read_png("marked.png")
+px = lambda rows, x0, x1, y0, y1: [(r[i], r[i + 1], r[i + 2]) for r in rows[y0:y1]
+                                   for i in range(3 * x0, 3 * x1, 3)]
+a, b = px(one, 200, 310, 10, 50), px(marked, 200, 310, 10, 50)
+inset = sum(p != q for p, q in zip(a, b)) / len(a)
+assert inset > 0.5, f"hemicube inset: only {100 * inset:.0f}% of its region changed"
+a, b = px(one, 0, 160, 0, 240), px(marked, 0, 160, 0, 240)
+magenta = sum(p != q and q[0] > 180 and q[1] < 120 and q[2] > 160 for p, q in zip(a, b))
+assert magenta >= 20, f"shooter outline: {magenta} magenta pixels changed"
+print(f"inset: {100 * inset:.0f}% of its region changed; outline: {magenta} magenta pixels")
 
 # False colour: the surfaces in viridis colours (not grey: the legend's panel and the
 # background are), many distinct colours, and a legend in the top right corner.

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -39,7 +40,7 @@ const char* kHelp =
     "R  reset view             F  frame the scene\n"
     "Space  pause/resume       N  one shot (while paused)\n"
     "1 / 2  smooth / flat      E  patch edges\n"
-    "C  false-colour irradiance (with legend)\n"
+    "C  false colour (legend)  L  last shooter  I  hemicube\n"
     "A  ambient term           + / -  exposure up/down (1/2 stop)\n"
     "O  status line            H / F1  this help\n"
     "Esc / Q  quit";
@@ -54,6 +55,7 @@ struct Options {
     long frames = -1;            ///< screenshot (or exit) at this frame
     bool no_ambient = false, no_overlay = false, flat = false, edges = false, paused = false;
     bool false_colour = false, show_help = false, quiet = false;
+    bool highlight = false, inset = false;
     double exposure = 0;         ///< [stops]
 };
 
@@ -63,6 +65,8 @@ struct ViewState {
     Bounds bounds;
     bool flat = false, edges = false, false_colour = false, ambient = true;
     bool paused = false, step_once = false, help = false, status = true;
+    bool highlight = false;      ///< outline the last shot's shooter (key L)
+    bool inset = false;          ///< the last hemicube's IDs and form factors (key I)
     double exposure = 0;
     int drag_button = -1;        ///< GLFW mouse button held, -1 none
     double last_x = 0, last_y = 0;
@@ -92,6 +96,8 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
     case GLFW_KEY_E: s.edges = !s.edges; break;
     case GLFW_KEY_C: s.false_colour = !s.false_colour; break;
     case GLFW_KEY_A: s.ambient = !s.ambient; break;
+    case GLFW_KEY_L: s.highlight = !s.highlight; break;
+    case GLFW_KEY_I: s.inset = !s.inset; break;
     case GLFW_KEY_EQUAL:
     case GLFW_KEY_KP_ADD: s.exposure += 0.5; break;
     case GLFW_KEY_MINUS:
@@ -198,6 +204,69 @@ Image8 legend_panel(const ColourScale& scale) {
     return img;
 }
 
+/// A colour for a patch id: the hue from a 32-bit integer hash (the "lowbias32" finaliser) of
+/// the polygon, so that polygons stand apart; the brightness (60..100%) from a hash of the
+/// patch (level, index), so that the patches the oracle chose show as a fine mosaic. Every
+/// channel stays above 38, unlike the black background and the dark grey backs.
+std::uint32_t hash32(std::uint32_t h) {
+    h ^= h >> 16;
+    h *= 0x7feb352du;
+    h ^= h >> 15;
+    h *= 0x846ca68bu;
+    h ^= h >> 16;
+    return h;
+}
+Rgb8 id_colour(std::uint32_t polygon, std::uint32_t level, std::uint32_t index) {
+    const std::uint32_t hp = hash32(polygon + 1), hq = hash32(index * 16 + level + 0x9e3779b9u);
+    const double k = (0.6 + 0.4 * (hq & 0xff) / 255.0) / 255.0;
+    const auto channel = [&](int shift) {
+        return std::uint8_t(std::lround((64 + ((hp >> shift) & 0xff) * 191 / 255) * k * 255));
+    };
+    return {channel(0), channel(8), channel(16)};
+}
+
+/// The last hemicube (FormFactorProvider::last_hemicube()) as two panels side by side, each
+/// scaled (nearest pixel) to `panel_w` x `panel_h`: left the patch IDs false-coloured
+/// (id_colour; nothing black, backs of polygons dark grey), right the analytic form factor
+/// (alpha) through viridis on a log scale over 3 decades under its maximum. Captioned. The
+/// hemicube's rows are bottom-up (GL): flipped here.
+Image8 hemicube_inset(const FormFactorProvider::HemicubeImage& cube, int panel_w, int panel_h) {
+    constexpr int pad = 4;
+    const int caption = text_height("X") + 2;
+    Image8 img(2 * panel_w + 3 * pad, panel_h + caption + 2 * pad, {24, 24, 28});
+    double hi = 0;
+    const std::size_t n = std::size_t(cube.width) * cube.height;
+    for (std::size_t i = 0; i < n; ++i)
+        if (cube.rgba[4 * i + 2] > 0.5f && std::isfinite(cube.rgba[4 * i + 3]))
+            hi = std::max(hi, double(cube.rgba[4 * i + 3]));
+    if (!(hi > 0)) hi = 1;
+    const double lo = hi / 1000;
+    const int top = pad + caption;
+    for (int y = 0; y < panel_h; ++y) {
+        const int cy = cube.height - 1 - std::min(cube.height - 1, y * cube.height / panel_h);
+        for (int x = 0; x < panel_w; ++x) {
+            const int cx = std::min(cube.width - 1, x * cube.width / panel_w);
+            const float* p = &cube.rgba[4 * (std::size_t(cy) * cube.width + cx)];
+            Rgb8 id{0, 0, 0}, ff{0, 0, 0};
+            if (p[2] > 0.5f) {
+                id = id_colour(std::uint32_t(p[2]) - 1, std::uint32_t(p[1]), std::uint32_t(p[0]));
+                ff = false_colour(colour_scale_position(std::max(double(p[3]), 0.0), lo, hi,
+                                                        true));
+            } else if (p[2] < -0.5f) {
+                id = ff = {64, 64, 64};
+            }
+            img.set(pad + x, top + y, id);
+            img.set(2 * pad + panel_w + x, top + y, ff);
+        }
+    }
+    char text[64];
+    std::snprintf(text, sizeof text, "F %.0e..%.0e", lo, hi);
+    if (text_width(text) > panel_w) std::snprintf(text, sizeof text, "F (log)");
+    draw_text(img, pad, pad, "patch IDs", {235, 235, 235});
+    draw_text(img, 2 * pad + panel_w, pad, text, {235, 235, 235});
+    return img;
+}
+
 Image8 read_back_buffer(int width, int height) {
     Image8 img(width, height);
     std::vector<std::uint8_t> rows(std::size_t(width) * height * 3);
@@ -272,6 +341,8 @@ int run(int argc, char** argv) {
     args.flag("--false-colour", &o.false_colour, "start with false-colour irradiance (key C)");
     args.option("--exposure", &o.exposure, "STOPS", "start exposure (keys + and -)");
     args.flag("--no-overlay", &o.no_overlay, "start with the status line hidden (key O)");
+    args.flag("--highlight", &o.highlight, "start with the last shooter outlined (key L)");
+    args.flag("--inset", &o.inset, "start with the last hemicube shown as an inset (key I)");
     args.flag("--paused", &o.paused, "start paused (Space resumes, N steps)");
     args.flag("--show-help", &o.show_help, "start with the key help shown (key H)");
     args.section("scripted runs");
@@ -351,6 +422,8 @@ int run(int argc, char** argv) {
         s.status = !o.no_overlay;
         s.exposure = o.exposure;
         s.help = o.show_help;
+        s.highlight = o.highlight;
+        s.inset = o.inset;
         s.fb_width = fbw;
         s.fb_height = fbh;
         glfwSetWindowUserPointer(window, &s);
@@ -420,6 +493,9 @@ int run(int argc, char** argv) {
             ro.ambient = s.ambient;
             ro.ambient_irradiance = solver.ambient_irradiance();
             const Camera cam = s.camera.camera();
+            // The shooter of the last shot, on top of the scene (not depth-tested).
+            std::optional<PatchAddress> shooter;
+            if (s.highlight && solver.shots() > 0) shooter = solver.last_shot().shooter;
             ColourScale scale;
             Hierarchy& h = solver.solution();
             if (s.false_colour) {
@@ -431,6 +507,7 @@ int run(int argc, char** argv) {
                 ro.background = dvec3(-1.0);
                 overlay.blit(false_colour_image(renderer.render(h, cam, ro), scale), 0, 0, fbw,
                              fbh);
+                if (shooter) renderer.draw_highlight(cam, *shooter, ro.highlight_colour, fbw, fbh);
             } else {
                 // Automatic exposure as for files (auto_exposure_scale: 95th percentile of
                 // luminance -> 1), from an offscreen render: full size for a screenshot, so
@@ -442,6 +519,7 @@ int run(int argc, char** argv) {
                 eo.height = std::max(16, int(std::lround(fbh * shrink)));
                 ro.scale = auto_exposure_scale(renderer.render(h, cam, eo)) * std::exp2(s.exposure);
                 ro.tone_map = true;
+                ro.highlight = shooter;
                 target.bind(fbw, fbh);
                 renderer.draw(h, cam, ro, fbw, fbh);
                 target.present();
@@ -466,9 +544,31 @@ int run(int argc, char** argv) {
                 const Image8 panel = text_panel(text);
                 overlay.blit(panel, 0, fbh - panel.height, fbw, fbh);
             }
+            int right = fbw; // left edge of the panels in the top right corner
             if (s.false_colour) {
                 const Image8 legend = legend_panel(scale);
                 overlay.blit(legend, fbw - legend.width - 4, 4, fbw, fbh);
+                right -= legend.width + 4;
+            }
+            if (s.inset) {
+                // Top right, at most ~45% of the window wide and 40% high, the cube's 4:3 kept.
+                const FormFactorProvider::HemicubeImage cube = solver.provider().last_hemicube();
+                if (cube.rgba && cube.width > 0 && cube.height > 0) {
+                    int pw = std::min(cube.width, std::max(16, (right - 16) / 2));
+                    pw = std::min(pw, std::max(16, int(0.45 * fbw / 2)));
+                    int ph = std::max(12, pw * cube.height / cube.width);
+                    if (ph > int(0.4 * fbh)) {
+                        ph = std::max(12, int(0.4 * fbh));
+                        pw = std::max(16, ph * cube.width / cube.height);
+                    }
+                    const Image8 inset = hemicube_inset(cube, pw, ph);
+                    overlay.blit(inset, right - inset.width - 4, 4, fbw, fbh);
+                } else {
+                    const Image8 note = text_panel(solver.shots() > 0
+                                                      ? "no hemicube (CPU form factors)"
+                                                      : "no hemicube yet");
+                    overlay.blit(note, right - note.width - 4, 4, fbw, fbh);
+                }
             }
             if (s.help) overlay.blit(text_panel(kHelp, 1, 8), 8, 8, fbw, fbh);
             else if (s.status && !scripted)
