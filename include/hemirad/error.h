@@ -10,6 +10,18 @@
 
 namespace hemirad {
 
+/// A number as a user wrote it, for messages: shortest round-trip form (0.5, not 0.500000).
+inline std::string num(double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    for (int precision = 1; precision < 17; ++precision) {
+        char shorter[32];
+        std::snprintf(shorter, sizeof shorter, "%.*g", precision, x);
+        if (std::strtod(shorter, nullptr) == x) return shorter;
+    }
+    return buf;
+}
+
 /// Bad input: a file, an option or scene content that the user can fix. The message names
 /// the file, line and value where they are known. Reported once, at the tool's edge.
 class InputError : public std::runtime_error {

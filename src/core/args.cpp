@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +13,16 @@
 namespace hemirad {
 
 namespace {
+
+// A whole decimal integer in [lo, hi], else InputError naming the option and the value.
+long parse_integer(const std::string& name, const std::string& v, long lo, long hi) {
+    char* end = nullptr;
+    errno = 0;
+    const long x = std::strtol(v.c_str(), &end, 10);
+    if (v.empty() || *end != '\0' || errno == ERANGE || x < lo || x > hi)
+        throw InputError(name + ": '" + v + "' is not an integer");
+    return x;
+}
 
 std::string shortest(double x) {
     std::ostringstream s;
@@ -72,14 +83,7 @@ void ArgParser::option(const std::string& name, double* out, const std::string& 
 void ArgParser::option(const std::string& name, long* out, const std::string& metavar,
                        const std::string& help) {
     Opt o{name, metavar, help, std::to_string(*out), nullptr};
-    o.set = [out, name](const std::string& v) {
-        char* end = nullptr;
-        errno = 0;
-        const long x = std::strtol(v.c_str(), &end, 10);
-        if (v.empty() || *end != '\0' || errno == ERANGE)
-            throw InputError(name + ": '" + v + "' is not an integer");
-        *out = x;
-    };
+    o.set = [out, name](const std::string& v) { *out = parse_integer(name, v, LONG_MIN, LONG_MAX); };
     opts_.push_back(o);
 }
 
@@ -87,12 +91,7 @@ void ArgParser::option(const std::string& name, int* out, const std::string& met
                        const std::string& help) {
     Opt o{name, metavar, help, std::to_string(*out), nullptr};
     o.set = [out, name](const std::string& v) {
-        char* end = nullptr;
-        errno = 0;
-        const long x = std::strtol(v.c_str(), &end, 10);
-        if (v.empty() || *end != '\0' || errno == ERANGE || x < -2147483647L || x > 2147483647L)
-            throw InputError(name + ": '" + v + "' is not an integer");
-        *out = int(x);
+        *out = int(parse_integer(name, v, INT_MIN, INT_MAX));
     };
     opts_.push_back(o);
 }

@@ -36,7 +36,7 @@ void validate(const GpuProviderOptions& o) {
         throw InputError("--min-resolution " + std::to_string(o.min_resolution) +
                          " exceeds --max-resolution " + std::to_string(o.max_resolution));
     if (!(std::abs(o.lod_bias) <= 16))
-        throw InputError("--lod-bias " + std::to_string(o.lod_bias) + " must be in -16..16");
+        throw InputError("--lod-bias " + num(o.lod_bias) + " must be in -16..16");
 }
 
 class HemicubeProvider final : public FormFactorProvider {

@@ -13,7 +13,7 @@ Discretisation discretise(const Scene& scene, const HierarchyOptions& options) {
         throw InputError("--max-depth " + std::to_string(options.max_depth) + " must be in 0.." +
                          std::to_string(kMaxDepth));
     if (options.patch_size < 0 || !std::isfinite(options.patch_size))
-        throw InputError("--patch-size " + std::to_string(options.patch_size) +
+        throw InputError("--patch-size " + num(options.patch_size) +
                          " must be positive (or 0 for automatic)");
     const double size =
         options.patch_size > 0 ? options.patch_size : scene.bounds().diagonal() / 64.0;

@@ -49,7 +49,7 @@ struct Builder {
 
 double reflectance(const BuiltinOptions& o, double fallback) {
     if (o.rho < 0) return fallback;
-    if (!(o.rho < 1)) throw InputError("--rho " + std::to_string(o.rho) + " must be in [0, 1)");
+    if (!(o.rho < 1)) throw InputError("--rho " + num(o.rho) + " must be in [0, 1)");
     return o.rho;
 }
 

@@ -21,19 +21,19 @@ double sum(const dvec3& v) { return v.x + v.y + v.z; }
 
 void validate(const SolverOptions& o) {
     if (!(o.tolerance > 0 && o.tolerance < 1))
-        throw InputError("--tolerance " + std::to_string(o.tolerance) + " must be in (0, 1)");
+        throw InputError("--tolerance " + num(o.tolerance) + " must be in (0, 1)");
     if (o.max_shots < 0)
         throw InputError("--max-shots " + std::to_string(o.max_shots) + " must be >= 0");
     if (!(o.time_limit >= 0))
-        throw InputError("--time-limit " + std::to_string(o.time_limit) + " must be >= 0");
+        throw InputError("--time-limit " + num(o.time_limit) + " must be >= 0");
     if (!(o.shooter_power_fraction > 0 && o.shooter_power_fraction <= 1))
-        throw InputError("--shooter-power " + std::to_string(o.shooter_power_fraction) +
+        throw InputError("--shooter-power " + num(o.shooter_power_fraction) +
                          " must be in (0, 1]");
     if (!(o.shooter_max_size >= 0))
-        throw InputError("--shooter-max-size " + std::to_string(o.shooter_max_size) +
+        throw InputError("--shooter-max-size " + num(o.shooter_max_size) +
                          " must be >= 0");
     if (!(o.shooter_min_size >= 0))
-        throw InputError("--shooter-size " + std::to_string(o.shooter_min_size) +
+        throw InputError("--shooter-size " + num(o.shooter_min_size) +
                          " must be >= 0");
 }
 
@@ -75,7 +75,7 @@ Solver::Solver(const Scene& scene, const SolverOptions& options,
 
 void Solver::init() {
     if (!(options_.enclosed_fraction > 0 && options_.enclosed_fraction <= 1))
-        throw InputError("--enclosed-fraction " + std::to_string(options_.enclosed_fraction) +
+        throw InputError("--enclosed-fraction " + num(options_.enclosed_fraction) +
                          " must be in (0, 1]");
     enclosed_.assign(hierarchy_.node_count(), 0);
     emitted_ = scene_->emitted_power();
