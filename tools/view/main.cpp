@@ -35,13 +35,13 @@ using Clock = std::chrono::steady_clock;
 
 const char* kHelp =
     "mouse   left drag: orbit    right/middle drag: pan    wheel: zoom\n"
-    "W S / Up Down: fly forward/back    Left Right: fly sideways\n"
+    "W S / Up Down: fly forward/back    A D / Left Right: sideways\n"
     "PgUp PgDn: fly up/down    (hold Shift: 4x faster)\n"
     "R  reset view             F  frame the scene\n"
     "Space  pause/resume       N  one shot (while paused)\n"
-    "1 / 2  smooth / flat      E  patch edges\n"
+    "1 / 2  smooth / flat      G  patch edges (grid)\n"
     "C  false colour (legend)  L  last shooter  I  hemicube\n"
-    "A  ambient term           + / -  exposure up/down (1/2 stop)\n"
+    "B  ambient term           + / -  exposure up/down (1/2 stop)\n"
     "O  status line            H / F1  this help\n"
     "Esc / Q  quit";
 
@@ -93,9 +93,9 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
     case GLFW_KEY_N: s.paused = true; s.step_once = true; break;
     case GLFW_KEY_1: s.flat = false; break;
     case GLFW_KEY_2: s.flat = true; break;
-    case GLFW_KEY_E: s.edges = !s.edges; break;
+    case GLFW_KEY_G: s.edges = !s.edges; break;
     case GLFW_KEY_C: s.false_colour = !s.false_colour; break;
-    case GLFW_KEY_A: s.ambient = !s.ambient; break;
+    case GLFW_KEY_B: s.ambient = !s.ambient; break;
     case GLFW_KEY_L: s.highlight = !s.highlight; break;
     case GLFW_KEY_I: s.inset = !s.inset; break;
     case GLFW_KEY_EQUAL:
@@ -158,7 +158,8 @@ void fly(GLFWwindow* w, ViewState& s, double dt) {
     auto down = [w](int key) { return glfwGetKey(w, key) == GLFW_PRESS; };
     const double f = (down(GLFW_KEY_W) || down(GLFW_KEY_UP) ? 1 : 0) -
                      (down(GLFW_KEY_S) || down(GLFW_KEY_DOWN) ? 1 : 0);
-    const double r = (down(GLFW_KEY_RIGHT) ? 1 : 0) - (down(GLFW_KEY_LEFT) ? 1 : 0);
+    const double r = (down(GLFW_KEY_D) || down(GLFW_KEY_RIGHT) ? 1 : 0) -
+                     (down(GLFW_KEY_A) || down(GLFW_KEY_LEFT) ? 1 : 0);
     const double u = (down(GLFW_KEY_PAGE_UP) ? 1 : 0) - (down(GLFW_KEY_PAGE_DOWN) ? 1 : 0);
     if (f == 0 && r == 0 && u == 0) return;
     const bool fast = down(GLFW_KEY_LEFT_SHIFT) || down(GLFW_KEY_RIGHT_SHIFT);
@@ -335,9 +336,9 @@ int run(int argc, char** argv) {
     args.option("--budget", &o.budget_ms, "MS", "solving time per frame (at least one shot)");
     args.option("--camera", &o.camera, "E,T,U,FOV",
                 "eye x,y,z, target x,y,z, up x,y,z, vertical fov [deg] (default: the scene's)");
-    args.flag("--no-ambient", &o.no_ambient, "start with the ambient term off (key A)");
+    args.flag("--no-ambient", &o.no_ambient, "start with the ambient term off (key B)");
     args.flag("--flat-shading", &o.flat, "start with flat shading (key 2)");
-    args.flag("--edges", &o.edges, "start with patch edges shown (key E)");
+    args.flag("--edges", &o.edges, "start with patch edges shown (key G)");
     args.flag("--false-colour", &o.false_colour, "start with false-colour irradiance (key C)");
     args.option("--exposure", &o.exposure, "STOPS", "start exposure (keys + and -)");
     args.flag("--no-overlay", &o.no_overlay, "start with the status line hidden (key O)");
