@@ -120,14 +120,10 @@ SolverOptions gpu_options() {
     o.hierarchy.patch_size = 0.0625;
     o.hierarchy.max_depth = 6;
     o.tolerance = 1e-3;
-    // Fixed resolution 512. Measured (bench/RESULTS.md): with the default adaptive 64..256,
-    // receivers on the walls are linked at coarse quadtree nodes (a node about one hemicube
-    // pixel), whose value, the analytic F at the node's centre, is then constant over the
-    // node; probes away from that centre were off by up to -1.5 % (5.3) and -4.6 % (5.6), the
-    // same with the "analytic" provider, so it is linking, not partial occlusion. A negative
-    // LOD bias (-1) is worse: -3 % everywhere (patches under a pixel are missed). At 512 every
-    // point is within 0.4 %.
-    o.provider.gpu.resolution = 512;
+    // Default hemicube resolution (adaptive 64..256) and LOD bias: every point within
+    // 0.51 % (the worst, 5.6's wall at y = 2.5, far up the wall from the lit floor). An
+    // earlier engine that let patches fall between pixel centres and linked some receivers
+    // twice needed a fixed 512 here.
     return o;
 }
 
@@ -204,12 +200,10 @@ TEST(Cie171, LitFloorObstructed_5_7) {
     SolverOptions o = gpu_options();
     // Visibility of the floor from a receiver is sampled at the shooters' centres, so the
     // shadow's edge on the floor is resolved to the size of the floor's shooters. Measured:
-    // shooters of 1 m (default descent, power fraction 1/16) or 0.25 m (1/256, even at
-    // resolution 384-512) leave the wall points 1-5 % off; shooters of 0.125 m (1/1024:
-    // 1024 shots) bring every point within 0.7 %. Resolution 256 then suffices (the wall's
-    // nodes are near the small shooters that light them, so they link finely).
-    o.shooter_power_fraction = 1.0 / 1100; // just under 4^-5: descend to level 5
-    o.provider.gpu.resolution = 256;
+    // shooters of 1 m (default descent, power fraction 1/16) or 0.25 m leave the wall points
+    // 1-5 % off; shooters of at most 0.125 m (--shooter-max-size) bring every point within
+    // 1 %.
+    o.shooter_max_size = 0.125;
     Solver s(scene, o);
     while (s.step()) {}
     ASSERT_TRUE(s.converged());
