@@ -84,7 +84,6 @@ public:
                              "power), got " + std::to_string(state.size()) + " values");
         max_power_ = state[0];
     }
-    std::string renderer_name() const { return context_ ? context_->renderer() : ""; }
 
     void shoot(const Shooter& shooter, std::vector<Link>& links) override {
         links.clear();
@@ -105,8 +104,6 @@ public:
         timings_.push_back({"reduce", since(t0)});
     }
 
-    /// Last hemicube read back (for the viewer's inset and for tests).
-    const std::vector<float>& pixels() const { return pixels_; }
 
 private:
     const gpu::HemicubeLayout& layout_for(const Shooter& shooter) {
@@ -245,7 +242,6 @@ private:
             l.receiver = {p, 0, 0};
             l.ff = l.ff_analytic = float(f);
             links.push_back(l);
-            ++missed_linked_;
         }
     }
 
@@ -328,7 +324,6 @@ private:
     std::vector<std::uint64_t> base_;
     std::vector<float> pixels_, pixel_sum_, analytic_, area_;
     std::vector<std::uint32_t> seen_, below_seen_, polygon_seen_;
-    long missed_linked_ = 0; ///< polygons linked by link_missed_polygons, for statistics
     std::vector<PatchAddress> touched_, fillers_;
     std::vector<double> filler_values_;
     std::vector<Timing> timings_;
