@@ -775,4 +775,34 @@ Image8 plot_lines(const std::vector<PlotSeries>& series, const std::string& titl
     return image;
 }
 
+Image8 false_colour_luminance(const ImageRGB& image, double unit_scale, bool log_scale,
+                              ColourRange& range) {
+    std::vector<double> lum(std::size_t(image.width) * image.height, -1.0);
+    double hi = 0.0, lo_positive = HUGE_VAL;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const float* p = image.at(x, y);
+            if (p[0] < 0) continue; // no surface
+            const double L = unit_scale * luminance(p[0], p[1], p[2]);
+            if (!std::isfinite(L)) continue;
+            lum[std::size_t(y) * image.width + x] = L;
+            hi = std::max(hi, L);
+            if (L > 0) lo_positive = std::min(lo_positive, L);
+        }
+    if (!(hi > 0)) hi = 1.0;
+    range.hi = hi;
+    range.lo = !log_scale                   ? 0.0
+               : std::isfinite(lo_positive) ? std::max(lo_positive, hi / 1000.0)
+                                            : hi / 1000.0;
+    Image8 out(image.width, image.height);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const double L = lum[std::size_t(y) * image.width + x];
+            out.set(x, y, L < 0 ? Rgb8{128, 128, 128}
+                                : false_colour(colour_scale_position(L, range.lo, range.hi,
+                                                                     log_scale)));
+        }
+    return out;
+}
+
 } // namespace hemirad

@@ -50,6 +50,18 @@ void blit(Image8& dst, const Image8& src, int x, int y);
 /// linear interpolation. t in [0, 1] (clamped; NaN gives the t = 0 colour): 0 is dark purple
 /// (68, 1, 84), 1 is yellow (253, 231, 37). Perceptually uniform and readable in grey.
 Rgb8 false_colour(double t);
+
+/// Range of a false-colour scale.
+struct ColourRange {
+    double lo = 0, hi = 1;
+};
+
+/// False colour of a quantity per pixel: the Rec. 709 luminance of `image` (times
+/// `unit_scale`, e.g. 683 for lux) through viridis; linear over 0..max, or logarithmic over at
+/// most 3 decades under the maximum. Pixels whose red value is negative (no surface there)
+/// are grey. The range used is returned in `range`, for the legend.
+Image8 false_colour_luminance(const ImageRGB& image, double unit_scale, bool log_scale,
+                              ColourRange& range);
 /// Position in [0, 1] of `value` on a colour scale from lo to hi, linear or log10 (clamped;
 /// values <= 0 on a log scale map to 0). Use with false_colour() and draw_colour_legend().
 double colour_scale_position(double value, double lo, double hi, bool log_scale);

@@ -78,35 +78,15 @@ RenderOptions render_options(const ImageOutputOptions& o, Solver& solver) {
 /// panel on the right. Pixels where no surface is (marked by a negative background) are grey.
 Image8 false_colour_view(const ImageRGB& E, bool log_scale, bool lux, double* lo_out,
                          double* hi_out) {
-    const double unit_scale = lux ? kLumensPerWatt : 1.0;
-    std::vector<double> lum(std::size_t(E.width) * E.height, -1.0);
-    double hi = 0.0, lo_pos = HUGE_VAL;
-    for (int y = 0; y < E.height; ++y)
-        for (int x = 0; x < E.width; ++x) {
-            const float* p = E.at(x, y);
-            if (p[0] < 0) continue; // background
-            const double L = unit_scale * luminance(p[0], p[1], p[2]);
-            lum[std::size_t(y) * E.width + x] = L;
-            if (std::isfinite(L)) {
-                hi = std::max(hi, L);
-                if (L > 0) lo_pos = std::min(lo_pos, L);
-            }
-        }
-    // Range: linear 0..max; log over at most 3 decades under the maximum.
-    if (!(hi > 0)) hi = 1.0;
-    double lo = 0.0;
-    if (log_scale) lo = std::isfinite(lo_pos) ? std::max(lo_pos, hi / 1000.0) : hi / 1000.0;
+    ColourRange range;
+    const Image8 view = false_colour_luminance(E, lux ? kLumensPerWatt : 1.0, log_scale, range);
+    const double lo = range.lo, hi = range.hi;
     *lo_out = lo;
     *hi_out = hi;
 
     constexpr int kPanel = 130; // legend panel width [pixels]
     Image8 out(E.width + kPanel, std::max(E.height, 120), Rgb8{255, 255, 255});
-    for (int y = 0; y < E.height; ++y)
-        for (int x = 0; x < E.width; ++x) {
-            const double L = lum[std::size_t(y) * E.width + x];
-            out.set(x, y, L < 0 ? Rgb8{128, 128, 128}
-                                : false_colour(colour_scale_position(L, lo, hi, log_scale)));
-        }
+    blit(out, view, 0, 0);
     const std::string unit = lux ? "lux (assumes metres)" : "E, W/unit²";
     const int bar_top = 28, bar_h = std::max(out.height - 48, 40);
     draw_colour_legend(out, E.width + 14, bar_top, 16, bar_h, lo, hi, unit, log_scale);

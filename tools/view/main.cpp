@@ -171,32 +171,9 @@ void fly(GLFWwindow* w, ViewState& s, double dt) {
 /// The false-colour view of the irradiance, as `hemirad solve --false-colour` draws it: the
 /// luminance of E through viridis on a log scale over at most three decades under the
 /// maximum; where no surface is (background marked -1) grey. Returns the range, for the legend.
-struct ColourScale {
-    double lo = 1e-3, hi = 1;
-};
+using ColourScale = ColourRange;
 Image8 false_colour_image(const ImageRGB& irr, ColourScale& scale) {
-    double hi = 0, lo_pos = HUGE_VAL;
-    for (int y = 0; y < irr.height; ++y)
-        for (int x = 0; x < irr.width; ++x) {
-            const float* p = irr.at(x, y);
-            if (p[0] < 0) continue;
-            const double l = luminance(p[0], p[1], p[2]);
-            if (!std::isfinite(l)) continue;
-            hi = std::max(hi, l);
-            if (l > 0) lo_pos = std::min(lo_pos, l);
-        }
-    if (!(hi > 0)) hi = 1;
-    scale.hi = hi;
-    scale.lo = std::isfinite(lo_pos) ? std::max(lo_pos, hi / 1000) : hi / 1000;
-    Image8 out(irr.width, irr.height);
-    for (int y = 0; y < irr.height; ++y)
-        for (int x = 0; x < irr.width; ++x) {
-            const float* p = irr.at(x, y);
-            out.set(x, y, p[0] < 0 ? Rgb8{128, 128, 128}
-                                   : false_colour(colour_scale_position(
-                                         luminance(p[0], p[1], p[2]), scale.lo, scale.hi, true)));
-        }
-    return out;
+    return false_colour_luminance(irr, 1.0, true, scale);
 }
 
 Image8 legend_panel(const ColourScale& scale) {
