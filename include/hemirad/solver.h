@@ -61,6 +61,10 @@ struct ShotRecord {
     double error_bound = 0;     ///< relative bound on ||B - B*||_1 (see Solver::error_bound)
 };
 
+/// Checks the options a user can get wrong (InputError naming the option and its value).
+/// The Solver's constructor calls it; tools call it first, before any expensive set-up.
+void validate_options(const SolverOptions& options);
+
 enum class StopReason { Running, Converged, MaxShots, TimeLimit, NothingToShoot };
 const char* to_string(StopReason r);
 

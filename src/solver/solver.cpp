@@ -19,7 +19,9 @@ double since(Clock::time_point t0) {
 
 double sum(const dvec3& v) { return v.x + v.y + v.z; }
 
-void validate(const SolverOptions& o) {
+} // namespace
+
+void validate_options(const SolverOptions& o) {
     if (!(o.tolerance > 0 && o.tolerance < 1))
         throw InputError("--tolerance " + num(o.tolerance) + " must be in (0, 1)");
     if (o.max_shots < 0)
@@ -35,9 +37,16 @@ void validate(const SolverOptions& o) {
     if (!(o.shooter_min_size >= 0))
         throw InputError("--shooter-size " + num(o.shooter_min_size) +
                          " must be >= 0");
+    if (!(o.enclosed_fraction > 0 && o.enclosed_fraction <= 1))
+        throw InputError("--enclosed-fraction " + num(o.enclosed_fraction) +
+                         " must be in (0, 1]");
+    if (o.hierarchy.max_depth < 0 || o.hierarchy.max_depth > kMaxDepth)
+        throw InputError("--max-depth " + std::to_string(o.hierarchy.max_depth) + " must be in 0.." +
+                         std::to_string(kMaxDepth));
 }
 
-// --- access to the hierarchy's private state, for save/resume ------------------------------
+namespace {
+
 bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
@@ -59,7 +68,7 @@ const char* to_string(StopReason r) {
 }
 
 Solver::Solver(const Scene& scene, const SolverOptions& options)
-    : scene_(&scene), options_((validate(options), options)),
+    : scene_(&scene), options_((validate_options(options), options)),
       hierarchy_(scene, discretise(scene, options.hierarchy)) {
     provider_ = make_provider(options.ff, scene, hierarchy_.discretisation(), options.provider);
     init();
@@ -67,16 +76,13 @@ Solver::Solver(const Scene& scene, const SolverOptions& options)
 
 Solver::Solver(const Scene& scene, const SolverOptions& options,
                std::unique_ptr<FormFactorProvider> provider)
-    : scene_(&scene), options_((validate(options), options)),
+    : scene_(&scene), options_((validate_options(options), options)),
       hierarchy_(scene, discretise(scene, options.hierarchy)), provider_(std::move(provider)) {
     HEMIRAD_CHECK(provider_ != nullptr);
     init();
 }
 
 void Solver::init() {
-    if (!(options_.enclosed_fraction > 0 && options_.enclosed_fraction <= 1))
-        throw InputError("--enclosed-fraction " + num(options_.enclosed_fraction) +
-                         " must be in (0, 1]");
     enclosed_.assign(hierarchy_.node_count(), 0);
     emitted_ = scene_->emitted_power();
     rho_max_ = scene_->max_reflectance();

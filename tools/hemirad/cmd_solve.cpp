@@ -78,6 +78,7 @@ int cmd_solve(int argc, char** argv) {
     if (!args.parse(argc, argv, 2)) return 0;
     if (!probes_in.empty() && probes_out.empty())
         throw InputError("--probes needs --probe-out OUT.csv");
+    validate_options(so);
     validate_output_options(out);
     exports.lux = out.images.lux; // one --lux flag: false colour and grids
     const std::vector<GridSpec> grid_specs = validate_export_options(exports);
