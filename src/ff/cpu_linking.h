@@ -65,6 +65,15 @@ class CpuProvider : public FormFactorProvider {
     /// Checks the shooter, clears `links`; throws InputError for a bad address.
     void begin_shot(const Shooter& shooter, std::vector<Link>& links) const;
     int depth_of(std::uint32_t polygon) const { return disc_.depth[polygon]; }
+    /// The receiving nodes of polygon r for this shot (leaves or adaptive linking); empty
+    /// when r is the shooter's polygon or cannot receive from it.
+    std::vector<ReceiverNode> linked_nodes(const Shooter& s, std::uint32_t r) const {
+        std::vector<ReceiverNode> nodes;
+        const Polygon& poly = scene_.polygons[r];
+        if (r == s.address.polygon || !may_receive(poly, s)) return nodes;
+        receiver_nodes(poly, r, depth_of(r), link_at_leaves_, options_.link_angle, s, nodes);
+        return nodes;
+    }
 
     const Scene& scene_;
     Discretisation disc_;

@@ -58,11 +58,8 @@ class ReferenceProvider final : public CpuProvider {
   private:
     void receive(const Shooter& s, const std::vector<Sample>& samples, std::uint32_t r,
                  std::vector<Link>& out) const {
-        if (r == s.address.polygon) return;
+        const std::vector<ReceiverNode> nodes = linked_nodes(s, r);
         const Polygon& poly = scene_.polygons[r];
-        if (!may_receive(poly, s)) return;
-        std::vector<ReceiverNode> nodes;
-        receiver_nodes(poly, r, depth_of(r), link_at_leaves_, options_.link_angle, s, nodes);
         for (const ReceiverNode& node : nodes) {
             const dvec3& x = node.geometry.centre;
             const double fa =
