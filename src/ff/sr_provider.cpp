@@ -17,39 +17,12 @@
 #include <random>
 #include <thread>
 
+#include "core/sampling.h"
 #include "ff/cpu_linking.h"
 
 namespace hemirad::cpu {
 
 namespace {
-
-// Uniform double in [0,1) from the top 53 bits (portable, unlike uniform_real_distribution).
-double uniform01(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
-
-// A point uniformly distributed by area on a patch (a quad as two triangles chosen by area).
-dvec3 sample_patch(const PatchGeometry& g, std::mt19937_64& rng) {
-    dvec3 a = g.corners[0], b = g.corners[1], c = g.corners[2];
-    const double pick = uniform01(rng);
-    if (g.count == 4) {
-        const double a1 = glm::length(glm::cross(b - a, c - a));
-        const double a2 = glm::length(glm::cross(c - a, g.corners[3] - a));
-        if (pick * (a1 + a2) >= a1) {
-            b = c;
-            c = g.corners[3];
-        }
-    }
-    const double r1 = std::sqrt(uniform01(rng)), r2 = uniform01(rng);
-    return a + r1 * (1 - r2) * (b - a) + r1 * r2 * (c - a);
-}
-
-// Orthonormal basis around unit n (Duff et al. 2017).
-void basis(const dvec3& n, dvec3& t, dvec3& b) {
-    const double sign = std::copysign(1.0, n.z);
-    const double a = -1.0 / (sign + n.z);
-    const double bb = n.x * n.y * a;
-    t = dvec3(1.0 + sign * n.x * n.x * a, sign * bb, -sign * n.x);
-    b = dvec3(bb, sign + n.y * n.y * a, -n.y);
-}
 
 constexpr int kChunk = 64; // sample points per generator
 
@@ -66,7 +39,7 @@ class SrProvider final : public CpuProvider {
             mix64(options_.seed ^ mix64((std::uint64_t(s.address.polygon) << 36) ^
                                         (std::uint64_t(s.address.level) << 32) ^ s.address.index));
         dvec3 t, b;
-        basis(s.normal, t, b);
+        orthonormal_basis(s.normal, t, b);
         // Hit keys: (polygon << 32) | patch index at the polygon's leaf level.
         const int chunks = (points + kChunk - 1) / kChunk;
         const int nthreads = std::min(threads_, chunks);
@@ -75,16 +48,14 @@ class SrProvider final : public CpuProvider {
             std::vector<std::uint64_t>& out = keys[thread];
             for (int c = thread; c < chunks; c += nthreads) {
                 std::mt19937_64 rng(mix64(base + std::uint64_t(c)));
+                const auto uniform01 = [&rng] { return double(rng() >> 11) * 0x1.0p-53; };
                 for (int p = c * kChunk; p < std::min(points, (c + 1) * kChunk); ++p) {
-                    const dvec3 origin = sample_patch(s.geometry, rng);
+                    const double pick = uniform01(), u1 = uniform01(), u2 = uniform01();
+                    const dvec3 origin =
+                        area_point(s.geometry.corners.data(), s.geometry.count, pick, u1, u2);
                     for (int k = 0; k < rays; ++k) {
-                        // Cosine-distributed direction: disk point (r, phi) lifted to the
-                        // hemisphere, r = sqrt(xi1), phi = 2 pi xi2.
-                        const double r = std::sqrt(uniform01(rng));
-                        const double phi = 2.0 * std::numbers::pi * uniform01(rng);
-                        const double z = std::sqrt(std::max(0.0, 1.0 - r * r));
-                        const dvec3 dir =
-                            r * std::cos(phi) * t + r * std::sin(phi) * b + z * s.normal;
+                        const double r1 = uniform01(), r2 = uniform01();
+                        const dvec3 dir = cosine_direction(s.normal, t, b, r1, r2);
                         Hit hit;
                         if (!bvh_->intersect(origin, dir, 1e300, hit, s.address.polygon)) continue;
                         if (!hit.front) continue; // absorbed by the back of a one-sided polygon
