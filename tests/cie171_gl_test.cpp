@@ -20,6 +20,7 @@
 #include <numbers>
 
 #include "hemirad/form_factors.h"
+#include "hemirad/gather.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/readout.h"
 #include "hemirad/solver.h"
@@ -112,25 +113,21 @@ struct Point {
     dvec3 p, n;
 };
 
+// Default options: the product's answer, as `hemirad solve --probes` gives it (final gather
+// at each point, gather.h). Only the GL context is shared between the tests.
 SolverOptions gpu_options() {
     SolverOptions o; // ff = "hybrid", the default
     o.provider.gpu.use_current_context = true;
-    // Leaves of 1/16 m (depth 6 on the 4 m surfaces): the probe readout interpolates
-    // bilinearly between leaf centres, whose error (h^2/8 E'') is far below 1e-3 here.
-    o.hierarchy.patch_size = 0.0625;
-    o.hierarchy.max_depth = 6;
     o.tolerance = 1e-3;
-    // Default hemicube resolution (adaptive 64..256) and LOD bias: every point within
-    // 0.51 % (the worst, 5.6's wall at y = 2.5, far up the wall from the lit floor). An
-    // earlier engine that let patches fall between pixel centres and linked some receivers
-    // twice needed a fixed 512 here.
     return o;
 }
 
 double probe(const Scene& scene, const Hierarchy& h, const Point& pt) {
     const auto sp = find_surface(scene, pt.p, pt.n, 1e-6);
     EXPECT_TRUE(sp.has_value()) << pt.name << ": no surface";
-    return sp ? irradiance_at(h, *sp).x : 0.0;
+    if (!sp) return 0.0;
+    const FinalGather gather(h);
+    return gather.at({pt.p, pt.n, sp->polygon}, 0).E().x;
 }
 
 void report(const char* test, const Point& pt, double ref, double ours) {
@@ -197,13 +194,10 @@ TEST(Cie171, LitFloorObstructed_5_7) {
     ASSERT_TRUE(ensure_context());
     const double M = kCie56FloorReflectance * kCie56FloorIlluminance;
     const Scene scene = make_cie56_lit_floor(M, true);
-    SolverOptions o = gpu_options();
-    // Visibility of the floor from a receiver is sampled at the shooters' centres, so the
-    // shadow's edge on the floor is resolved to the size of the floor's shooters. Measured:
-    // shooters of 1 m (default descent, power fraction 1/16) or 0.25 m leave the wall points
-    // 1-5 % off; shooters of at most 0.125 m (--shooter-max-size) bring every point within
-    // 1 %.
-    o.shooter_max_size = 0.125;
+    // Default options: the plate's shadow is resolved by the final gather's area visibility of
+    // the emitting floor at each point (before it, the floor's shooters saw the plate from
+    // their centres and needed --shooter-max-size 0.125 for 1 %).
+    const SolverOptions o = gpu_options();
     Solver s(scene, o);
     while (s.step()) {}
     ASSERT_TRUE(s.converged());

@@ -54,6 +54,11 @@ public:
     /// polygons in the last shoot(): near 1 when the shooter's centre is enclosed (under a
     /// box, behind a light), where a point-sampled shot would lose the patch's power.
     virtual double last_backface_fraction() const { return 0; }
+    /// Share of the last shooter's form factor whose visibility changes across the shooter's
+    /// area (silhouettes of nearby occluders; gpu/hemicube.h, parallax_fraction): large when a
+    /// shot from the centre misrepresents what the shooter's area sees. Computed on demand
+    /// from the last shoot(); 0 for providers that sample the shooter's area themselves.
+    virtual double last_parallax_fraction() const { return 0; }
     /// The hemicube rendered by the last shoot() (GPU providers; for display and tests):
     /// width x height RGBA floats, row 0 at the bottom (GL order), laid out as
     /// gpu::HemicubeLayout (top face at (0,0) res x res, four half faces around it). Per

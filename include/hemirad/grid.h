@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "hemirad/gather.h"
 #include "hemirad/hierarchy.h"
 #include "hemirad/json.h"
 
@@ -58,9 +59,12 @@ struct GridResult {
     dvec3 E_min{0.0}, E_avg{0.0}, E_max{0.0}; ///< per channel
 };
 
-/// Evaluates the grid on a push-pulled hierarchy (Solver::solution()). Throws InputError for an
-/// unknown group (listing the groups) or a group whose polygons are not coplanar.
-GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec);
+/// Evaluates the grid on a push-pulled hierarchy (Solver::solution()): by final gather at each
+/// point when `gather` is given (gather.h), else interpolated between the leaves. Throws
+/// InputError for an unknown group (listing the groups) or a group whose polygons are not
+/// coplanar.
+GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec,
+                         const FinalGather* gather = nullptr);
 
 /// The report entry: {group, nx, ny, points, skipped, E_min, E_avg, E_max, U0 (luminance,
 /// W unit^-2), E_rgb {min, avg, max}, and with lux: lux {min, avg, max}}.

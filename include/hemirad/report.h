@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "hemirad/gather.h"
 #include "hemirad/grid.h"
 #include "hemirad/json.h"
 #include "hemirad/solver.h"
@@ -21,12 +22,25 @@ Json solve_report(Solver& solver, const std::vector<GridResult>& grids, bool lux
 struct Probe {
     dvec3 position{0.0}, normal{0.0};
 };
+/// About `count` points spread over every polygon of the scene, for accuracy studies: each
+/// polygon gets a share proportional to its area (at least `min_per_polygon`), placed by
+/// jittered stratification of its parameter square (a triangle folds the square's upper half),
+/// kept 1e-3 of the parameter range away from the edges; the normal is the polygon's.
+/// Deterministic for a given scene, count and seed.
+std::vector<Probe> surface_points(const Scene& scene, std::size_t count, std::uint64_t seed = 1,
+                                  int min_per_polygon = 2);
+/// CSV rows x,y,z,nx,ny,nz with a header (the input of --probes).
+std::string probe_points_csv(const std::vector<Probe>& probes);
+
 /// Reads CSV rows x,y,z,nx,ny,nz (a header line is optional; '#' comments allowed). Throws
 /// InputError naming the file and line of a malformed row.
 std::vector<Probe> read_probes(const std::string& path);
-/// CSV x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group; a point on no surface gets empty E columns
-/// and "none" as its group.
-std::string probes_csv(const std::vector<Probe>& probes, const Hierarchy& h);
+/// CSV x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group. Without a gather E is interpolated between
+/// the leaves around the point and a point on no surface gets empty E columns; with a final
+/// gather (gather.h) E is evaluated at the point itself, also in free space (polygon empty).
+/// Either way a point on no surface has "none" as its group.
+std::string probes_csv(const std::vector<Probe>& probes, const Hierarchy& h,
+                       const FinalGather* gather = nullptr);
 
 /// Writes a whole file atomically (temporary file, then rename): never a partial file.
 void write_text_file(const std::string& path, const std::string& contents);

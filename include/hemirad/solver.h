@@ -43,6 +43,14 @@ struct SolverOptions {
     /// fraction (its centre is enclosed: under a box, behind a light) is not shot; its
     /// children are shot instead, so that its power is not lost. (0, 1]; 1 = never refine.
     double enclosed_fraction = 0.5;
+    /// A shooter whose view changes across its area (FormFactorProvider::
+    /// last_parallax_fraction: silhouettes of occluders near a large shooter) misplaces the
+    /// part of its power that the parallax fraction P measures. A node whose misplaced power
+    /// P * (unshot power) would exceed this fraction of the emitted power is not shot from its
+    /// centre; its children are shot instead. P is measured once per node, the test is made
+    /// at every selection (a node that was too strong early may shoot whole later, when it
+    /// holds less power). >= 0; 0 = never refine for parallax.
+    double shooter_parallax = 1e-3;
 };
 
 /// One shot, as reported after it (also one line of --log).
@@ -51,7 +59,9 @@ struct ShotRecord {
     PatchAddress shooter;
     double shooter_power = 0;   ///< unshot power shot, sum over RGB [W]
     std::size_t links = 0;
-    int refined = 0;            ///< enclosed shooters replaced by their children before this shot
+    int refined = 0;            ///< shooters replaced by their children before this shot
+                                ///< (enclosed centre, or parallax above the limit)
+    double parallax = -1;       ///< the shooter's parallax fraction (-1: not measured, a leaf)
     double row_sum = 0;         ///< sum_j F(j->S) A_j / A_S before any guard (1 if closed)
     bool row_guarded = false;   ///< the guard rescaled this row
     double t_select = 0, t_push_pull = 0, t_form_factors = 0, t_update = 0; ///< [s]
@@ -128,7 +138,7 @@ public:
         std::vector<Hierarchy::Node> nodes;   ///< every node, in Hierarchy order
         std::vector<dvec3> unshot;            ///< per polygon, unshot power [W]
         std::vector<std::uint8_t> dirty;      ///< per polygon, needs a push-pull
-        std::vector<std::uint8_t> enclosed;   ///< per node, see enclosed_fraction
+        std::vector<std::uint8_t> enclosed;   ///< per node, a view code (see Solver::view_)
         std::vector<double> provider;         ///< FormFactorProvider::save_state()
     };
     State save_state() const;
@@ -146,7 +156,11 @@ private:
     Hierarchy hierarchy_;
     std::unique_ptr<FormFactorProvider> provider_;
     std::vector<Link> links_;
-    std::vector<std::uint8_t> enclosed_; ///< per node: its centre is enclosed, shoot children
+    bool must_split(std::uint64_t node) const;
+
+    /// Per node, what its hemicube showed, once measured: 0 not yet, 1 enclosed centre (always
+    /// shoot the children), 2..255 its parallax fraction, P = 1e-4 * 2^((code - 2) / 16).
+    std::vector<std::uint8_t> view_;
     ShotRecord last_;
     long shots_ = 0;
     StopReason stop_ = StopReason::Running;

@@ -27,6 +27,9 @@ void add_solver_options(ArgParser& args, SolverOptions& so) {
     args.option("--enclosed-fraction", &so.enclosed_fraction, "F",
                 "shoot the children of a shooter whose hemisphere is more than F backs of "
                 "polygons");
+    args.option("--shooter-parallax", &so.shooter_parallax, "F",
+                "shoot a node's children instead of the node when its view changes across "
+                "its area by more than this share of its form factor (0 = never)");
     args.section("form factors");
     args.option("--resolution", &so.provider.gpu.resolution, "N",
                 "GPU: fixed hemicube resolution (0 = adaptive)");

@@ -40,6 +40,25 @@ HemicubeFrame hemicube_frame(const Shooter& shooter);
 /// (from the hemicube's centre) falls in, or -1 if d points below the shooter's plane.
 long hemicube_pixel(const HemicubeLayout& layout, const HemicubeFrame& frame, const dvec3& d);
 
+/// Unit direction from the hemicube's centre through the centre of pixel (i, j) of `face`
+/// (pixel coordinates within the face, row 0 at the bottom).
+dvec3 hemicube_direction(const HemicubeLayout& layout, const HemicubeFrame& frame, int face,
+                         int i, int j);
+
+/// Parallax fraction of a rendered hemicube: an estimate of the share of the shooter's form
+/// factor whose visibility differs between the shooter's centre (where the hemicube sees from)
+/// and the rest of its area. A silhouette, where neighbouring pixels show surfaces at distances
+/// t_near < t_far (a jump of more than 25 %, or the void behind), moves by up to
+/// w = (s/2) (1/t_near - 1/t_far) radians as the eye moves s/2 across a shooter of size
+/// s = sqrt(area); the band of that width behind every silhouette pixel is counted with the
+/// delta form factor of its pixels. Sum over the silhouette (each pixel pair once):
+///   P = sum delta_ff(far pixel) * min(w / pixel angle, res/4).
+/// Near 0 when nothing near the shooter hides anything (a corner of an empty room: surfaces
+/// meet without jumps); near or above 1 when a large shooter sits beside a block. `rgba` is
+/// the image read back (IDs as in FormFactorProvider::HemicubeImage).
+double parallax_fraction(const Scene& scene, const Shooter& shooter, const HemicubeLayout& layout,
+                         const float* rgba);
+
 class HemicubeRenderer {
 public:
     /// Uploads the scene's polygons and the patch-ID mip texture (depth = max of `disc`).

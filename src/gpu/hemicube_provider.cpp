@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 
 #include "gpu/hemicube.h"
 #include "hemirad/error.h"
@@ -70,6 +71,10 @@ public:
     std::string name() const override { return name_; }
     std::vector<Timing> last_timings() const override { return timings_; }
     double last_backface_fraction() const override { return backface_; }
+    double last_parallax_fraction() const override {
+        if (!last_layout_) return 0;
+        return gpu::parallax_fraction(*scene_, last_shooter_, *last_layout_, pixels_.data());
+    }
     HemicubeImage last_hemicube() const override {
         if (pixels_.size() < 4 * std::size_t(last_width_) * std::size_t(last_height_) ||
             last_width_ <= 0)
@@ -98,6 +103,8 @@ public:
         renderer_->read_back(layout, pixels_);
         last_width_ = layout.width;
         last_height_ = layout.height;
+        last_layout_ = &layout;
+        last_shooter_ = shooter;
         timings_.push_back({"readback", since(t0)});
         t0 = Clock::now();
         reduce(shooter, layout, links);
@@ -320,7 +327,7 @@ private:
     GpuProviderOptions options_;
     std::unique_ptr<gl::Context> context_;
     std::unique_ptr<gpu::HemicubeRenderer> renderer_;
-    std::vector<gpu::HemicubeLayout> layouts_;
+    std::deque<gpu::HemicubeLayout> layouts_; // deque: references stay valid as it grows
     std::vector<std::uint64_t> base_;
     std::vector<float> pixels_, pixel_sum_, analytic_, area_;
     std::vector<std::uint32_t> seen_, below_seen_, polygon_seen_;
@@ -330,6 +337,8 @@ private:
     std::uint32_t stamp_ = 0;
     double max_power_ = 0;
     double backface_ = 0;
+    const gpu::HemicubeLayout* last_layout_ = nullptr; ///< of the last shoot() (in layouts_)
+    Shooter last_shooter_;
     int last_width_ = 0, last_height_ = 0; ///< layout of pixels_ (last_hemicube())
 };
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "hemirad/error.h"
@@ -110,21 +111,34 @@ std::vector<Probe> read_probes(const std::string& path) {
     return probes;
 }
 
-std::string probes_csv(const std::vector<Probe>& probes, const Hierarchy& h) {
+std::string probes_csv(const std::vector<Probe>& probes, const Hierarchy& h,
+                       const FinalGather* gather) {
+    const Scene& scene = h.scene();
+    std::vector<std::optional<SurfacePoint>> surfaces;
+    std::vector<GatherPoint> queries;
+    for (const Probe& p : probes) {
+        surfaces.push_back(find_surface(scene, p.position, p.normal));
+        const std::optional<SurfacePoint>& sp = surfaces.back();
+        queries.push_back({p.position, p.normal, sp ? sp->polygon : GatherPoint::kNoSurface});
+    }
+    std::vector<GatherValue> gathered;
+    if (gather) gathered = gather->at(queries);
     std::ostringstream s;
     s.precision(9);
     s << "x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group\n";
-    for (const Probe& p : probes) {
+    for (std::size_t k = 0; k < probes.size(); ++k) {
+        const Probe& p = probes[k];
+        const std::optional<SurfacePoint>& sp = surfaces[k];
         s << p.position.x << "," << p.position.y << "," << p.position.z << "," << p.normal.x
           << "," << p.normal.y << "," << p.normal.z << ",";
-        const auto sp = find_surface(h.scene(), p.position, p.normal);
-        if (!sp) {
+        if (!sp && !gather) {
             s << ",,,,none\n";
             continue;
         }
-        const dvec3 E = irradiance_at(h, *sp);
-        s << E.x << "," << E.y << "," << E.z << "," << sp->polygon << ","
-          << h.scene().groups[h.scene().polygons[sp->polygon].group] << "\n";
+        const dvec3 E = gather ? gathered[k].E() : irradiance_at(h, *sp);
+        s << E.x << "," << E.y << "," << E.z << ",";
+        if (sp) s << sp->polygon << "," << scene.groups[scene.polygons[sp->polygon].group] << "\n";
+        else s << ",none\n";
     }
     return s.str();
 }

@@ -49,7 +49,7 @@ GridSpec parse_grid_spec(const std::string& text) {
     return g;
 }
 
-GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec) {
+GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec, const FinalGather* gather) {
     const Scene& scene = h.scene();
     const int group = scene.find_group(spec.group);
     if (group < 0) {
@@ -155,27 +155,38 @@ GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec) {
                 SurfacePoint sp{p, std::clamp(pu, 0.0, 1.0), std::clamp(pv, 0.0, 1.0), 0.0};
                 gp.on_surface = true;
                 gp.polygon = p;
-                gp.E = irradiance_at(h, sp);
+                if (!gather) gp.E = irradiance_at(h, sp);
                 break;
             }
-            if (gp.on_surface) {
-                const double y = lum(gp.E);
-                if (r.evaluated == 0) {
-                    r.Y_min = r.Y_max = y;
-                    r.E_min = r.E_max = gp.E;
-                } else {
-                    r.Y_min = std::min(r.Y_min, y);
-                    r.Y_max = std::max(r.Y_max, y);
-                    r.E_min = glm::min(r.E_min, gp.E);
-                    r.E_max = glm::max(r.E_max, gp.E);
-                }
-                y_sum += y;
-                e_sum += gp.E;
-                ++r.evaluated;
-            } else {
-                ++r.skipped;
-            }
             r.points.push_back(gp);
+        }
+    }
+    if (gather) {
+        std::vector<GatherPoint> queries;
+        for (const GridPoint& gp : r.points)
+            if (gp.on_surface) queries.push_back({gp.position, r.normal, gp.polygon});
+        const std::vector<GatherValue> values = gather->at(queries);
+        std::size_t k = 0;
+        for (GridPoint& gp : r.points)
+            if (gp.on_surface) gp.E = values[k++].E();
+    }
+    for (const GridPoint& gp : r.points) {
+        if (gp.on_surface) {
+            const double y = lum(gp.E);
+            if (r.evaluated == 0) {
+                r.Y_min = r.Y_max = y;
+                r.E_min = r.E_max = gp.E;
+            } else {
+                r.Y_min = std::min(r.Y_min, y);
+                r.Y_max = std::max(r.Y_max, y);
+                r.E_min = glm::min(r.E_min, gp.E);
+                r.E_max = glm::max(r.E_max, gp.E);
+            }
+            y_sum += y;
+            e_sum += gp.E;
+            ++r.evaluated;
+        } else {
+            ++r.skipped;
         }
     }
     if (r.evaluated > 0) {

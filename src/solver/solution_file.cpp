@@ -145,6 +145,7 @@ std::vector<SolutionOption> solution_options(const SolverOptions& o) {
         {"--flat", b(o.flat)},
         {"--no-row-guard", b(!o.row_guard)}, // the command line's spelling of the switch
         {"--enclosed-fraction", hex(o.enclosed_fraction)},
+        {"--shooter-parallax", hex(o.shooter_parallax)},
         {"--resolution", std::to_string(g.resolution)},
         {"--min-resolution", std::to_string(g.min_resolution)},
         {"--max-resolution", std::to_string(g.max_resolution)},
@@ -199,6 +200,7 @@ void apply_solution_option(SolverOptions& o, const SolutionOption& option,
         o.row_guard = !off;
     }
     else if (name == "--enclosed-fraction") dbl(o.enclosed_fraction);
+    else if (name == "--shooter-parallax") dbl(o.shooter_parallax);
     else if (name == "--resolution") integer(g.resolution);
     else if (name == "--min-resolution") integer(g.min_resolution);
     else if (name == "--max-resolution") integer(g.max_resolution);

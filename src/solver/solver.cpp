@@ -37,6 +37,9 @@ void validate_options(const SolverOptions& o) {
     if (!(o.shooter_min_size >= 0))
         throw InputError("--shooter-size " + num(o.shooter_min_size) +
                          " must be >= 0");
+    if (!(o.shooter_parallax >= 0) || std::isinf(o.shooter_parallax))
+        throw InputError("--shooter-parallax " + num(o.shooter_parallax) +
+                         " must be >= 0 (0 = never refine for parallax)");
     if (!(o.enclosed_fraction > 0 && o.enclosed_fraction <= 1))
         throw InputError("--enclosed-fraction " + num(o.enclosed_fraction) +
                          " must be in (0, 1]");
@@ -46,6 +49,14 @@ void validate_options(const SolverOptions& o) {
 }
 
 namespace {
+
+// View codes (Solver::view_): a parallax fraction in 2..255, log-spaced 16 to an octave.
+constexpr std::uint8_t kViewUnknown = 0, kViewEnclosed = 1;
+std::uint8_t parallax_code(double p) {
+    const double c = 2 + std::round(16 * std::log2(std::max(p, 1e-4) / 1e-4));
+    return std::uint8_t(std::clamp(c, 2.0, 255.0));
+}
+double code_parallax(std::uint8_t code) { return 1e-4 * std::exp2((code - 2) / 16.0); }
 
 bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -83,7 +94,7 @@ Solver::Solver(const Scene& scene, const SolverOptions& options,
 }
 
 void Solver::init() {
-    enclosed_.assign(hierarchy_.node_count(), 0);
+    view_.assign(hierarchy_.node_count(), kViewUnknown);
     emitted_ = scene_->emitted_power();
     rho_max_ = scene_->max_reflectance();
     // Default minimum shooter size: the size of the smallest leaf patches' polygons' leaves.
@@ -129,7 +140,7 @@ PatchAddress Solver::select_shooter(std::uint32_t polygon) {
         options_.shooter_power_fraction * sum(hierarchy_.total_unshot_power());
     PatchAddress a{polygon, 0, 0};
     while (int(a.level) < depth) {
-        const bool must_descend = enclosed_[hierarchy_.node_id(a)] != 0 ||
+        const bool must_descend = must_split(hierarchy_.node_id(a)) ||
                                   std::sqrt(double(hierarchy_.node(a).area)) > max_size_;
         PatchAddress best = a;
         double best_power = -1;
@@ -189,12 +200,20 @@ bool Solver::step() {
         t0 = Clock::now();
         provider_->shoot(shooter, links_);
         rec.t_form_factors += since(t0);
-        // An enclosed centre would lose the patch's power: shoot its children instead.
-        if (provider_->last_backface_fraction() > options_.enclosed_fraction &&
-            int(sa.level) < hierarchy_.depth(polygon)) {
-            enclosed_[hierarchy_.node_id(sa)] = 1;
-            ++rec.refined;
-            continue;
+        // An enclosed centre would lose the patch's power, and a centre beside a near
+        // occluder would misplace it (parallax): shoot the children instead.
+        rec.parallax = -1;
+        if (int(sa.level) < hierarchy_.depth(polygon)) {
+            const std::uint64_t id = hierarchy_.node_id(sa);
+            if (view_[id] == kViewUnknown)
+                view_[id] = provider_->last_backface_fraction() > options_.enclosed_fraction
+                                ? kViewEnclosed
+                                : parallax_code(provider_->last_parallax_fraction());
+            if (view_[id] != kViewEnclosed) rec.parallax = code_parallax(view_[id]);
+            if (must_split(id)) {
+                ++rec.refined;
+                continue;
+            }
         }
         break;
     }
@@ -239,6 +258,15 @@ bool Solver::step() {
     rec.error_bound = error_bound();
     last_ = std::move(rec);
     return true;
+}
+
+bool Solver::must_split(std::uint64_t node) const {
+    const std::uint8_t code = view_[node];
+    if (code == kViewEnclosed) return true;
+    if (code == kViewUnknown || options_.shooter_parallax <= 0) return false;
+    const Hierarchy::Node& n = hierarchy_.nodes()[node];
+    const double power = double(n.dB.x + n.dB.y + n.dB.z) * double(n.area);
+    return code_parallax(code) * power > options_.shooter_parallax * sum(emitted_);
 }
 
 Solver::RowSumStats Solver::row_sums() const {
@@ -303,7 +331,7 @@ Solver::State Solver::save_state() const {
     st.nodes = hierarchy_.nodes();
     st.unshot = hierarchy_.unshot_powers();
     st.dirty = hierarchy_.dirty_flags();
-    st.enclosed = enclosed_;
+    st.enclosed = view_;
     st.provider = provider_->save_state();
     return st;
 }
@@ -321,7 +349,7 @@ void Solver::restore_state(const State& st) {
     expect("hierarchy nodes", st.nodes.size(), nodes.size());
     expect("polygons (unshot power)", st.unshot.size(), unshot.size());
     expect("polygons (dirty flags)", st.dirty.size(), dirty.size());
-    expect("enclosed flags", st.enclosed.size(), enclosed_.size());
+    expect("view codes", st.enclosed.size(), view_.size());
     for (std::size_t i = 0; i < st.nodes.size(); ++i) {
         const Hierarchy::Node& n = st.nodes[i];
         if (!finite(n.H) || !finite(n.dB) || !finite(n.dI))
@@ -340,7 +368,7 @@ void Solver::restore_state(const State& st) {
         throw InputError("saved solver state: invalid counters");
     provider_->restore_state(st.provider);
     hierarchy_.restore_state(st.nodes, st.unshot, st.dirty);
-    enclosed_ = st.enclosed;
+    view_ = st.enclosed;
     restore(c);
 }
 

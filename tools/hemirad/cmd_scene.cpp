@@ -4,7 +4,9 @@
 
 #include "commands.h"
 #include "hemirad/cli_options.h"
+#include "hemirad/error.h"
 #include "hemirad/json.h"
+#include "hemirad/report.h"
 
 namespace hemirad::cli {
 
@@ -20,10 +22,27 @@ int cmd_scene(int argc, char** argv) {
                    "Loads a scene and prints what it holds.");
     args.positional("SCENE", &name, "OBJ file or built-in scene (cornell, cube, furnace, sphere)");
     args.flag("--json", &json, "print JSON instead of text");
+    long points = 0;
+    std::string points_out;
+    args.option("--surface-points", &points, "N",
+                "write about N points spread over every polygon (x,y,z,nx,ny,nz; the input of "
+                "--probes) to --points-out");
+    args.option("--points-out", &points_out, "FILE.csv", "where --surface-points go");
     add_scene_options(args, builtin);
     if (!args.parse(argc, argv, 2)) return 0;
+    if ((points > 0) != !points_out.empty())
+        throw InputError("--surface-points N and --points-out FILE.csv go together");
+    if (points < 0 || points > 100'000'000)
+        throw InputError("--surface-points " + std::to_string(points) + " must be in 1..1e8");
 
     const Scene scene = load_scene(name, builtin);
+    if (points > 0) {
+        const std::vector<Probe> probes = surface_points(scene, std::size_t(points));
+        write_text_file(points_out, probe_points_csv(probes));
+        std::fprintf(stderr, "hemirad: wrote %zu surface points to %s\n", probes.size(),
+                     points_out.c_str());
+        return 0;
+    }
     const Bounds b = scene.bounds();
     const dvec3 power = scene.emitted_power();
     if (json) {

@@ -37,6 +37,7 @@ Json shot_json(const ShotRecord& r) {
     j["shooter_power"] = r.shooter_power;
     j["links"] = r.links;
     if (r.refined) j["refined"] = r.refined;
+    if (r.parallax >= 0) j["parallax"] = r.parallax;
     Json t = Json::object();
     t["select"] = r.t_select;
     t["push_pull"] = r.t_push_pull;
@@ -154,13 +155,27 @@ int cmd_solve(int argc, char** argv) {
                      solver.shots(), solver.seconds(), solver.error_bound(), so.tolerance,
                      solver.row_sums().min, solver.row_sums().max, solver.row_sums().guarded);
 
-    const std::vector<GridResult> grids = evaluate_grids(grid_specs, h, quiet);
+    // Point read-outs: by final gather unless --gather off.
+    std::unique_ptr<FinalGather> gather;
+    if (!grid_specs.empty() || !probes.empty()) gather = make_gather(exports, h);
+    const auto t_points = std::chrono::steady_clock::now();
+    const std::vector<GridResult> grids = evaluate_grids(grid_specs, h, gather.get(), quiet);
+    std::string probe_text;
+    if (!probes_out.empty()) probe_text = probes_csv(probes, h, gather.get());
+    if (gather && !quiet) {
+        std::size_t points = probes.size();
+        for (const GridResult& g : grids) points += std::size_t(g.evaluated);
+        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                                       t_points).count();
+        std::fprintf(stderr, "hemirad: final gather at %zu points in %.2f s (%.2f ms a point)\n",
+                     points, s, points ? 1e3 * s / double(points) : 0.0);
+    }
     if (!report.empty()) {
         write_report(report, solver, scene, grids, exports.lux);
         if (!quiet) std::fprintf(stderr, "hemirad: wrote %s (JSON report)\n", report.c_str());
     }
     if (!probes_out.empty()) {
-        write_probes(probes_out, probes, h);
+        write_text_file(probes_out, probe_text);
         if (!quiet)
             std::fprintf(stderr, "hemirad: wrote %s (irradiance at %zu probes)\n",
                          probes_out.c_str(), probes.size());

@@ -25,6 +25,15 @@ void add_export_options(ArgParser& args, ExportOptions& o) {
     args.option("--resume", &o.resume, "FILE",
                 "continue from a saved state: same scene; options not given take the saved "
                 "values, given ones must match; --time-limit counts the saved run's time");
+    args.section("point read-outs (probes, grids)");
+    args.option("--gather", &o.gather, "on|off",
+                "final gather at each point: direct light from the emitters with their area "
+                "visibility sampled, indirect from the solution by rays (off: interpolate the "
+                "leaf patches around the point)");
+    args.option("--gather-rays", &o.gather_options.rays, "N",
+                "final gather: cosine rays per point for the indirect light (16..65536)");
+    args.option("--gather-angle", &o.gather_options.emitter_angle, "A",
+                "final gather: widest emitter cell seen from a point, radians (0..1]");
 }
 
 std::vector<GridSpec> validate_export_options(const ExportOptions& o) {
@@ -32,7 +41,15 @@ std::vector<GridSpec> validate_export_options(const ExportOptions& o) {
     for (const std::string& g : o.grids) specs.push_back(parse_grid_spec(g));
     if (!o.grid_out.empty() && specs.empty())
         throw InputError("--grid-out needs at least one --grid GROUP:NXxNY");
+    if (o.gather != "on" && o.gather != "off")
+        throw InputError("--gather '" + o.gather + "' must be on or off");
+    validate_gather_options(o.gather_options);
     return specs;
+}
+
+std::unique_ptr<FinalGather> make_gather(const ExportOptions& o, const Hierarchy& h) {
+    if (o.gather != "on") return nullptr;
+    return std::make_unique<FinalGather>(h, o.gather_options);
 }
 
 std::optional<SolutionFile> prepare_resume(const ExportOptions& o, const ArgParser& args,
@@ -66,10 +83,10 @@ void write_solution_file(const ExportOptions& o, const Solver& solver, bool quie
 }
 
 std::vector<GridResult> evaluate_grids(const std::vector<GridSpec>& specs, const Hierarchy& h,
-                                       bool quiet) {
+                                       const FinalGather* gather, bool quiet) {
     std::vector<GridResult> grids;
     for (const GridSpec& s : specs) {
-        grids.push_back(evaluate_grid(h, s));
+        grids.push_back(evaluate_grid(h, s, gather));
         const GridResult& g = grids.back();
         if (!quiet && g.skipped > 0)
             std::fprintf(stderr,

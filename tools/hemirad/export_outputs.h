@@ -2,11 +2,13 @@
 // lightmaps), and saving/resuming the solver state.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "hemirad/args.h"
+#include "hemirad/gather.h"
 #include "hemirad/grid.h"
 #include "hemirad/solution_file.h"
 #include "hemirad/solver.h"
@@ -21,6 +23,8 @@ struct ExportOptions {
     std::string lightmaps;          ///< --export-lightmaps DIR
     std::string save_solution;      ///< --save-solution FILE: solver state at the end
     std::string resume;             ///< --resume FILE: continue from a saved state
+    std::string gather = "on";      ///< --gather on|off: probes and grids by final gather
+    GatherOptions gather_options;   ///< --gather-rays, --gather-angle
 };
 void add_export_options(ArgParser& args, ExportOptions& o);
 /// Checks combinations and parses the grid specs. Throws InputError.
@@ -36,9 +40,13 @@ std::optional<SolutionFile> prepare_resume(const ExportOptions& o, const ArgPars
 /// Writes --save-solution (call after the last step, before Solver::solution()).
 void write_solution_file(const ExportOptions& o, const Solver& solver, bool quiet);
 
-/// Evaluates the grids on the push-pulled solution.
+/// The final gather for probes and grids (nullptr with --gather off), on the push-pulled
+/// solution.
+std::unique_ptr<FinalGather> make_gather(const ExportOptions& o, const Hierarchy& h);
+
+/// Evaluates the grids on the push-pulled solution (by final gather when `gather` is given).
 std::vector<GridResult> evaluate_grids(const std::vector<GridSpec>& specs, const Hierarchy& h,
-                                       bool quiet);
+                                       const FinalGather* gather, bool quiet);
 /// Writes --grid-out, --export-ply and --export-lightmaps.
 void write_export_outputs(const ExportOptions& o, const std::vector<GridResult>& grids,
                           const Hierarchy& h, bool quiet);

@@ -33,8 +33,4 @@ void write_report(const std::string& path, Solver& solver, const Scene& scene,
     write_text_file(path, solve_report(solver, grids, lux).dump() + "\n");
 }
 
-void write_probes(const std::string& path, const std::vector<Probe>& probes, const Hierarchy& h) {
-    write_text_file(path, probes_csv(probes, h));
-}
-
 } // namespace hemirad::cli

@@ -22,7 +22,6 @@ void write_outputs(const OutputOptions& o, Solver& solver, bool quiet);
 
 void write_report(const std::string& path, Solver& solver, const Scene& scene,
                   const std::vector<GridResult>& grids = {}, bool lux = false);
-void write_probes(const std::string& path, const std::vector<Probe>& probes, const Hierarchy& h);
 
 /// SIGINT/SIGTERM set a flag: the solve finishes its shot, writes its outputs, exits non-zero.
 void install_interrupt_handler();

@@ -1,0 +1,87 @@
+// Final gather at points: irradiance at a query point evaluated at the point itself from a
+// solved hierarchy, instead of interpolating the leaf patches around it.
+//
+//   E(x) = E_direct(x) + E_indirect(x)
+//
+// Direct: for every emitting polygon P facing x, exitance Be_P times the form factor from x to
+// P with P's visibility sampled over its area: P is cut into cells no wider than
+// `emitter_angle` as seen from x and one shadow ray goes to a jittered point of each cell; if
+// every ray arrives, the exact unoccluded form factor F(dx -> P) is used (Lambert's contour
+// integral, form_factors.h); if none does, P is hidden; in a penumbra each cell is split 4 x 4
+// again and sum_k F(dx -> cell_k) * visible_k is used (one jittered ray per fine cell). So
+// penumbrae and contact shadows at the point are resolved to a sixteenth of a coarse cell,
+// whatever the leaf size of the surface the point lies on.
+//
+// Indirect: `rays` cosine-distributed directions, stratified over an m x m grid of the unit
+// square (m = round(sqrt(rays))), each with one jittered sample. A ray that reaches the front
+// of polygon Q at y brings the solved reflected radiosity rho_Q * H(y) (H interpolated between
+// Q's leaf centres, readout.h); Q's own emission is not counted there (it is in the direct
+// part); a ray that escapes or hits the back of a polygon brings nothing. With pdf cos/pi the
+// estimate is E_indirect = (1/N) sum rho_Q H(y). Errors in H average over the hemisphere, so
+// a leaf straddling a shadow edge next to the point costs the point little.
+//
+// Results depend only on the solution, the options and the point's index (each point has its
+// own generator seeded from `seed` and the index), not on the number of threads.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "hemirad/hierarchy.h"
+
+namespace hemirad {
+
+class Bvh;
+
+struct GatherOptions {
+    int rays = 1024;             ///< indirect: cosine rays per point, 16..65536 (typical 256-4096)
+    double emitter_angle = 0.1;  ///< direct: widest emitter cell seen from the point [rad], (0, 1]
+    std::uint64_t seed = 1;      ///< generator seed (reproducible)
+    int threads = 0;             ///< worker threads; 0 = all cores
+};
+
+/// Throws InputError naming the option (--gather-rays, --gather-angle) and the value.
+void validate_gather_options(const GatherOptions& o);
+
+/// A query: a point, the unit normal of the surface element there, and the polygon it lies on
+/// (kNoSurface for a point in free space: a work plane above the floor).
+struct GatherPoint {
+    static constexpr std::uint32_t kNoSurface = std::numeric_limits<std::uint32_t>::max();
+    dvec3 position{0.0}, normal{0.0};
+    std::uint32_t polygon = kNoSurface;
+};
+
+struct GatherValue {
+    dvec3 direct{0.0}, indirect{0.0}; ///< [W unit^-2], RGB
+    dvec3 E() const { return direct + indirect; }
+};
+
+class FinalGather {
+  public:
+    /// `h` must be push-pulled (Solver::solution()) and outlive this object.
+    FinalGather(const Hierarchy& h, const GatherOptions& options = {});
+    ~FinalGather();
+    FinalGather(const FinalGather&) = delete;
+    FinalGather& operator=(const FinalGather&) = delete;
+
+    /// One point; `index` selects its random stream.
+    GatherValue at(const GatherPoint& q, std::uint64_t index) const;
+    /// Many points, on options.threads threads; point k uses index k.
+    std::vector<GatherValue> at(const std::vector<GatherPoint>& points) const;
+
+    const GatherOptions& options() const { return options_; }
+
+  private:
+    dvec3 direct(const dvec3& x, const dvec3& n, std::uint32_t self, std::uint64_t seed) const;
+    dvec3 indirect(const dvec3& x, const dvec3& n, std::uint32_t self, std::uint64_t seed) const;
+
+    const Hierarchy* h_;
+    GatherOptions options_;
+    std::unique_ptr<Bvh> bvh_;
+    std::vector<std::uint32_t> emitters_; ///< polygons with exitance > 0
+    double offset_ = 0;                   ///< origin offset along the normal [unit]
+};
+
+} // namespace hemirad

@@ -1,0 +1,69 @@
+// How much of a shooter's view changes across its area (hemicube.h, parallax_fraction): the
+// criterion that decides whether one hemicube at the centre is good enough for a shooter.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "gpu/hemicube.h"
+
+namespace hemirad::gpu {
+
+dvec3 hemicube_direction(const HemicubeLayout& L, const HemicubeFrame& f, int face, int i, int j) {
+    const double d = 2.0 / L.res;
+    const double x = -1 + (i + 0.5) * d;
+    const double y = face == 0 ? -1 + (j + 0.5) * d : (j + 0.5) * d;
+    const dvec3 screen_x = glm::cross(f.dir[face], f.up[face]);
+    return glm::normalize(f.dir[face] + x * screen_x + y * f.up[face]);
+}
+
+double parallax_fraction(const Scene& scene, const Shooter& shooter, const HemicubeLayout& L,
+                         const float* rgba) {
+    constexpr double kJump = 1.25; // t_far / t_near above this is a silhouette
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    const HemicubeFrame frame = hemicube_frame(shooter);
+    const dvec3& eye = shooter.geometry.centre;
+    const double half = 0.5 * std::sqrt(shooter.geometry.area);
+    const double cap = 0.25 * L.res;
+    double total = 0;
+    for (int f = 0; f < 5; ++f) {
+        const HemicubeLayout::Face& face = L.faces[f];
+        // Distance along each pixel's ray to the plane of the polygon it shows (inf: none).
+        std::vector<double> t(std::size_t(face.w) * face.h);
+        for (int j = 0; j < face.h; ++j)
+            for (int i = 0; i < face.w; ++i) {
+                const std::size_t px = std::size_t(face.y + j) * L.width + face.x + i;
+                const float id = rgba[4 * px + 2];
+                double& dist = t[std::size_t(j) * face.w + i];
+                dist = kInf;
+                if (id > -0.5f && id < 0.5f) continue;
+                const Polygon& q = scene.polygons[std::uint32_t(std::abs(id)) - 1];
+                const dvec3 dir = hemicube_direction(L, frame, f, i, j);
+                const double along = glm::dot(dir, q.normal);
+                if (along != 0) dist = std::max(glm::dot(q.v[0] - eye, q.normal) / along, 0.0);
+            }
+        const double pixel = 2.0 / L.res; // pixel side at unit distance along the face axis
+        const auto pair = [&](int i0, int j0, int i1, int j1) {
+            double a = t[std::size_t(j0) * face.w + i0], b = t[std::size_t(j1) * face.w + i1];
+            int fi = i1, fj = j1; // the far pixel
+            if (a > b) std::swap(a, b), fi = i0, fj = j0;
+            if (!(b > kJump * a) || a == kInf) return;
+            const double w = half * (1.0 / a - (b == kInf ? 0.0 : 1.0 / b));
+            // Angular size of the far pixel: its side over its distance from the eye on the
+            // unit-distance face plane, foreshortened (|d|^-1.5 between |d|^-1 and |d|^-2).
+            const double x = -1 + (fi + 0.5) * pixel;
+            const double y = f == 0 ? -1 + (fj + 0.5) * pixel : (fj + 0.5) * pixel;
+            const double len = std::sqrt(1 + x * x + y * y);
+            const double angle = pixel / std::pow(len, 1.5);
+            const std::size_t px = std::size_t(face.y + fj) * L.width + face.x + fi;
+            total += double(L.delta_ff[px]) * std::min(w / angle, cap);
+        };
+        for (int j = 0; j < face.h; ++j)
+            for (int i = 0; i < face.w; ++i) {
+                if (i + 1 < face.w) pair(i, j, i + 1, j);
+                if (j + 1 < face.h) pair(i, j, i, j + 1);
+            }
+    }
+    return total;
+}
+
+} // namespace hemirad::gpu

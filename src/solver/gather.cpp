@@ -1,0 +1,143 @@
+// Final gather at points (gather.h).
+#include "hemirad/gather.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+#include "core/sampling.h"
+#include "ff/bvh.h"
+#include "hemirad/error.h"
+#include "hemirad/form_factors.h"
+#include "hemirad/readout.h"
+
+namespace hemirad {
+
+namespace {
+
+constexpr int kPenumbraSplit = 2; ///< a penumbra cell is re-sampled 4^2 = 16 times finer
+
+bool nonzero(const dvec3& v) { return v.x > 0 || v.y > 0 || v.z > 0; }
+
+} // namespace
+
+void validate_gather_options(const GatherOptions& o) {
+    if (o.rays < 16 || o.rays > 65536)
+        throw InputError("--gather-rays " + std::to_string(o.rays) + " must be in 16..65536");
+    if (!(o.emitter_angle > 0 && o.emitter_angle <= 1))
+        throw InputError("--gather-angle " + num(o.emitter_angle) + " must be in (0, 1]");
+    if (o.threads < 0)
+        throw InputError("gather threads " + std::to_string(o.threads) + " must be >= 0");
+}
+
+FinalGather::FinalGather(const Hierarchy& h, const GatherOptions& options)
+    : h_(&h), options_(options), bvh_(std::make_unique<Bvh>(h.scene())) {
+    validate_gather_options(options_);
+    const Scene& scene = h.scene();
+    for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
+        if (nonzero(scene.material_of(scene.polygons[p]).exitance())) emitters_.push_back(p);
+    offset_ = 1e-9 * scene.bounds().diagonal();
+}
+
+FinalGather::~FinalGather() = default;
+
+dvec3 FinalGather::direct(const dvec3& x, const dvec3& n, std::uint32_t self,
+                          std::uint64_t seed) const {
+    const Scene& scene = h_->scene();
+    Rng rng(seed);
+    dvec3 E(0.0);
+    for (std::uint32_t e : emitters_) {
+        if (e == self) continue;
+        const Polygon& P = scene.polygons[e];
+        if (glm::dot(P.normal, x - P.v[0]) <= 0) continue; // x is behind the emitter
+        const double F = point_to_polygon_ff(x, n, P.v.data(), P.count);
+        if (F <= 0) continue;
+        // Cells no wider than emitter_angle as seen from the nearest corner's distance.
+        double near = 1e300;
+        for (int k = 0; k < P.count; ++k) near = std::min(near, glm::length(P.v[k] - x));
+        near = std::max(near, 1e-12);
+        const double cells = std::sqrt(P.area) / (near * options_.emitter_angle);
+        const int level = std::clamp(int(std::ceil(std::log2(std::max(cells, 1.0)))), 0,
+                                     kMaxDepth - kPenumbraSplit);
+        const std::uint32_t count = 1u << (2 * level);
+        const auto visible = [&](const PatchGeometry& g) {
+            const double pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+            const dvec3 y = area_point(g.corners.data(), g.count, pick, u1, u2);
+            return !bvh_->occluded(x, y, self, e);
+        };
+        std::uint32_t seen = 0;
+        for (std::uint32_t c = 0; c < count; ++c)
+            seen += visible(patch_geometry(P, std::uint32_t(level), c)) ? 1 : 0;
+        double f = 0;
+        if (seen == count) {
+            f = F;
+        } else if (seen > 0) {
+            // Penumbra: sum over fine cells of F(dx -> cell) * (one jittered ray's visibility).
+            const std::uint32_t fine_level = std::uint32_t(level + kPenumbraSplit);
+            const std::uint32_t fine = 1u << (2 * fine_level);
+            for (std::uint32_t c = 0; c < fine; ++c) {
+                const PatchGeometry g = patch_geometry(P, fine_level, c);
+                const double fc = point_to_polygon_ff(x, n, g.corners.data(), g.count);
+                if (fc > 0 && visible(g)) f += fc;
+            }
+        }
+        E += f * scene.material_of(P).exitance();
+    }
+    return E;
+}
+
+dvec3 FinalGather::indirect(const dvec3& x, const dvec3& n, std::uint32_t self,
+                            std::uint64_t seed) const {
+    const Scene& scene = h_->scene();
+    Rng rng(seed);
+    dvec3 t, b;
+    orthonormal_basis(n, t, b);
+    const int m = std::max(1, int(std::lround(std::sqrt(double(options_.rays)))));
+    const dvec3 origin = x + offset_ * n;
+    dvec3 sum(0.0);
+    for (int j = 0; j < m; ++j) {
+        for (int i = 0; i < m; ++i) {
+            const double u1 = (i + rng.uniform()) / m, u2 = (j + rng.uniform()) / m;
+            const dvec3 dir = cosine_direction(n, t, b, u1, u2);
+            Hit hit;
+            if (!bvh_->intersect(origin, dir, 1e300, hit, self) || !hit.front) continue;
+            const Polygon& q = scene.polygons[hit.polygon];
+            const dvec3& rho = scene.material_of(q).rho;
+            if (!nonzero(rho)) continue;
+            const SurfacePoint sp{hit.polygon, hit.u, hit.v, 0.0};
+            sum += rho * irradiance_at(*h_, sp);
+        }
+    }
+    return sum / double(m * m);
+}
+
+GatherValue FinalGather::at(const GatherPoint& q, std::uint64_t index) const {
+    GatherValue v;
+    const double len = glm::length(q.normal);
+    if (!(len > 0)) return v;
+    const dvec3 n = q.normal / len;
+    const std::uint32_t self = q.polygon == GatherPoint::kNoSurface ? kNoPolygon : q.polygon;
+    const std::uint64_t seed = splitmix64(options_.seed ^ splitmix64(index));
+    v.direct = direct(q.position, n, self, seed);
+    v.indirect = indirect(q.position, n, self, splitmix64(seed + 1));
+    return v;
+}
+
+std::vector<GatherValue> FinalGather::at(const std::vector<GatherPoint>& points) const {
+    std::vector<GatherValue> out(points.size());
+    unsigned threads = options_.threads > 0 ? unsigned(options_.threads)
+                                            : std::max(1u, std::thread::hardware_concurrency());
+    threads = unsigned(std::min<std::size_t>(threads, std::max<std::size_t>(1, points.size() / 8)));
+    std::atomic<std::size_t> next{0};
+    const auto work = [&] {
+        for (std::size_t k; (k = next.fetch_add(1)) < points.size();) out[k] = at(points[k], k);
+    };
+    std::vector<std::thread> pool;
+    for (unsigned i = 1; i < threads; ++i) pool.emplace_back(work);
+    work();
+    for (std::thread& th : pool) th.join();
+    return out;
+}
+
+} // namespace hemirad
