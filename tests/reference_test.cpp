@@ -270,7 +270,12 @@ TEST_P(ReferenceFurnace, IrradianceIsBeOverOneMinusRho) {
 INSTANTIATE_TEST_SUITE_P(Cases, ReferenceFurnace,
                          ::testing::Values(FurnaceCase{1, dvec3(0.5)},
                                            FurnaceCase{1, dvec3(0.2, 0.5, 0.8)},
-                                           FurnaceCase{3, dvec3(0.5)}));
+                                           FurnaceCase{3, dvec3(0.5)}),
+                         [](const auto& info) {
+                             return std::string(info.param.rho.x == info.param.rho.z ? "grey"
+                                                                                     : "coloured") +
+                                    "_subdiv" + std::to_string(info.param.subdiv);
+                         });
 
 // A furnace with a box inside it (same emission and reflectance, faces outwards): still
 // E = Be/(1 - rho) on every front, now with occlusion, and the inner box's backs never seen.
