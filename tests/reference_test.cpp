@@ -379,6 +379,12 @@ TEST(ReferenceOptions, OutOfRangeValuesNameTheOption) {
     EXPECT_NE(message(o).find("--max-bounces -2"), std::string::npos) << message(o);
 }
 
+TEST(ReferenceOptions, ProbeWithoutANormalIsAnInputError) {
+    const Scene scene = make_builtin("cube");
+    const std::vector<Probe> probes = {{{0.5, 0, 0.5}, {0, 1, 0}}, {{0.5, 0, 0.5}, {0, 0, 0}}};
+    EXPECT_THROW(reference_irradiance(scene, probes, with_samples(4)), InputError);
+}
+
 TEST(ReferenceOptions, OneSampleHasNoStandardError) {
     const Scene scene = make_builtin("cube");
     const auto v = reference_irradiance(scene, {Probe{{0.5, 0, 0.5}, {0, 1, 0}}}, with_samples(1));

@@ -57,12 +57,13 @@ struct ReferenceValue {
 };
 
 /// Called after each point is done with (points done, points in all); from the worker
-/// threads, but never concurrently (calls are serialised). May be empty.
+/// threads, but never concurrently (calls are serialised). Must not throw. May be empty.
 using ReferenceProgress = std::function<void(std::size_t done, std::size_t total)>;
 
 /// Irradiance at every probe, each an independent Monte-Carlo estimate. The result for a
 /// point depends only on (seed, its index, samples, max_bounces), not on the thread count.
-/// Validates the options first (validate_options). Probes' normals need not be unit length.
+/// Validates the options first (validate_options). Probes' normals need not be unit length;
+/// a probe with a zero or non-finite normal or position throws InputError naming its index.
 std::vector<ReferenceValue> reference_irradiance(const Scene& scene,
                                                  const std::vector<Probe>& probes,
                                                  const ReferenceOptions& options,

@@ -79,9 +79,9 @@ double max_channel(const dvec3& v) {
 
 class PathTracer {
   public:
-    PathTracer(const Scene& scene, int max_bounces)
-        : scene_(scene), bvh_(scene), max_bounces_(max_bounces),
-          offset_(kOffset * scene.bounds().diagonal()) {
+    /// offset: how far ray origins leave a surface along its normal [unit].
+    PathTracer(const Scene& scene, int max_bounces, double offset)
+        : scene_(scene), bvh_(scene), max_bounces_(max_bounces), offset_(offset) {
         select_.assign(scene.polygons.size(), 0.0);
         double total = 0;
         for (std::uint32_t i = 0; i < scene.polygons.size(); ++i) {
@@ -179,23 +179,30 @@ class PathTracer {
     bool sum_all_ = true;
 };
 
-ReferenceValue estimate(const PathTracer& tracer, const Scene& scene, const Probe& probe,
-                        std::size_t index, const ReferenceOptions& o) {
+// Throws InputError for a probe the estimator cannot place (checked before any thread starts:
+// an exception must not leave a worker).
+void check_probes(const std::vector<Probe>& probes) {
+    for (std::size_t i = 0; i < probes.size(); ++i) {
+        const Probe& p = probes[i];
+        const double length = glm::length(p.normal);
+        if (!(length > 0 && std::isfinite(length)) ||
+            !std::isfinite(glm::dot(p.position, p.position)))
+            throw InputError("probe " + std::to_string(i) +
+                             ": the position and normal must be finite and the normal non-zero");
+    }
+}
+
+ReferenceValue estimate(const PathTracer& tracer, const Scene& scene, double offset,
+                        const Probe& probe, std::size_t index, const ReferenceOptions& o) {
     ReferenceValue r;
-    const double length = glm::length(probe.normal);
-    if (!(length > 0 && std::isfinite(length)) ||
-        !std::isfinite(glm::dot(probe.position, probe.position)))
-        throw InputError("probe " + std::to_string(index) +
-                         ": the position and normal must be "
-                         "finite and the normal non-zero");
-    dvec3 x = probe.position, n = probe.normal / length;
+    dvec3 x = probe.position, n = glm::normalize(probe.normal);
     std::uint32_t ignore = kNoPolygon;
     if (const auto sp = find_surface(scene, probe.position, probe.normal)) {
-        // On a surface: that surface's irradiance at the projection of the probe.
+        // On a surface: that surface's irradiance at the projection of the probe, `offset`
+        // above it.
         const Polygon& p = scene.polygons[sp->polygon];
         n = p.normal;
-        x = probe.position - glm::dot(probe.position - p.v[0], n) * n +
-            kOffset * scene.bounds().diagonal() * n;
+        x = probe.position - glm::dot(probe.position - p.v[0], n) * n + offset * n;
         ignore = sp->polygon;
         r.on_surface = true;
         r.polygon = sp->polygon;
@@ -223,9 +230,11 @@ std::vector<ReferenceValue> reference_irradiance(const Scene& scene,
                                                  const ReferenceOptions& options,
                                                  const ReferenceProgress& progress) {
     validate_options(options);
+    check_probes(probes);
     std::vector<ReferenceValue> values(probes.size());
     if (probes.empty()) return values;
-    const PathTracer tracer(scene, options.max_bounces);
+    const double offset = kOffset * scene.bounds().diagonal();
+    const PathTracer tracer(scene, options.max_bounces, offset);
     unsigned threads = options.threads > 0 ? unsigned(options.threads)
                                            : std::max(1u, std::thread::hardware_concurrency());
     threads = unsigned(std::min<std::size_t>(threads, probes.size()));
@@ -236,7 +245,7 @@ std::vector<ReferenceValue> reference_irradiance(const Scene& scene,
         for (;;) {
             const std::size_t i = next.fetch_add(1);
             if (i >= probes.size()) return;
-            values[i] = estimate(tracer, scene, probes[i], i, options);
+            values[i] = estimate(tracer, scene, offset, probes[i], i, options);
             std::lock_guard lock(progress_mutex);
             ++done;
             if (progress) progress(done, probes.size());
