@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "core/sampling.h"
 #include "hemirad/error.h"
 #include "hemirad/reference.h"
 #include "hemirad/scene_io.h"
@@ -326,6 +327,70 @@ TEST(ReferenceSem, ZScoresHaveUnitVariance) {
     z2 /= double(values.size());
     EXPECT_GT(z2, 0.45);
     EXPECT_LT(z2, 1.75);
+}
+
+// --- energy balance in a closed box with a different reflectance on every face ----------------
+
+// In a closed enclosure absorbed = emitted, per channel (REFERENCES.md §2.2):
+// sum_i A_i (1 - rho_i) H_i = Phi = sum_i A_i Be_i, for any reflectances. Here a unit box,
+// lit by its ceiling (Be = 1, so Phi = 1), with other reflectances per face and per channel:
+// the irradiance is far from uniform and every bounce matters. The left side is an area
+// integral over the box's surface, estimated at M points uniform by area (X_k = S (1 - rho)
+// E_k with S = 6 the total area): its mean is unbiased and its standard error is the sample
+// standard deviation of the X_k / sqrt(M) (the points and their paths are independent).
+TEST(ReferenceEnergy, AbsorbedEqualsEmittedInAClosedBox) {
+    Builder b;
+    const dvec3 rho[6] = {{0.2, 0.5, 0.8}, {0.8, 0.5, 0.2}, {0.5, 0.5, 0.5},
+                          {0.3, 0.3, 0.3}, {0.7, 0.1, 0.4}, {0.4, 0.6, 0.9}};
+    std::uint32_t m[6];
+    for (int f = 0; f < 6; ++f)
+        m[f] =
+            b.material("face" + std::to_string(f), rho[f], f == 3 ? dvec3(1.0 / kPi) : dvec3(0.0));
+    // Faces facing inwards: x = 0, x = 1, y = 0, y = 1 (the light), z = 0, z = 1.
+    for (int f = 0; f < 6; ++f) {
+        const int axis = f / 2;
+        const double at = f % 2;
+        std::vector<dvec3> c(4, dvec3(at));
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        const double uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+        for (int k = 0; k < 4; ++k) {
+            c[k][u] = uv[k][0];
+            c[k][v] = uv[k][1];
+        }
+        dvec3 inward(0.0);
+        inward[axis] = at == 0 ? 1 : -1;
+        b.quad(c, inward, m[f]);
+    }
+    const Scene scene = b.finish();
+    // Points uniform by area, from a generator of their own.
+    Rng rng(2024);
+    std::vector<Probe> probes;
+    std::vector<int> face;
+    constexpr int M = 4000;
+    for (int k = 0; k < M; ++k) {
+        const int f = std::min(5, int(rng.uniform() * 6));
+        const int axis = f / 2;
+        dvec3 p(rng.uniform(), rng.uniform(), rng.uniform()), n(0.0);
+        p[axis] = f % 2;
+        n[axis] = f % 2 == 0 ? 1 : -1;
+        probes.push_back({p, n});
+        face.push_back(f);
+    }
+    const auto values = reference_irradiance(scene, probes, with_samples(16));
+    dvec3 sum(0.0), sum2(0.0);
+    for (int k = 0; k < M; ++k) {
+        ASSERT_TRUE(values[k].on_surface) << "point " << k;
+        ASSERT_EQ(values[k].polygon, std::uint32_t(face[k])) << "point " << k;
+        const dvec3 X = 6.0 * (1.0 - rho[face[k]]) * values[k].E;
+        sum += X;
+        sum2 += X * X;
+    }
+    const dvec3 mean = sum / double(M);
+    const dvec3 sem = glm::sqrt((sum2 / double(M) - mean * mean) / double(M - 1));
+    ReferenceValue absorbed;
+    absorbed.E = mean;
+    absorbed.sem = sem;
+    expect_estimate(absorbed, dvec3(1.0), 0.02, "absorbed power");
 }
 
 // --- determinism and options ---------------------------------------------------------------
