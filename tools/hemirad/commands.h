@@ -12,6 +12,7 @@ int cmd_info(int argc, char** argv);
 int cmd_scene(int argc, char** argv);
 int cmd_solve(int argc, char** argv);
 int cmd_formfactors(int argc, char** argv);
+int cmd_reference(int argc, char** argv);
 
 /// Options that select and shape a scene (built-in scenes' parameters).
 void add_scene_options(ArgParser& args, BuiltinOptions& o);

@@ -20,6 +20,7 @@ const char* kUsage =
     "  solve SCENE        solve a scene; write reports, logs, probe values\n"
     "  scene SCENE        print what a scene holds (polygons, area, emitted power, warnings)\n"
     "  formfactors SCENE  form factors from one surface group to every group (paper 000)\n"
+    "  reference SCENE    unbiased Monte-Carlo irradiance at probe points (the yardstick)\n"
     "  info               print the GL backend, vendor, renderer and version\n"
     "\n"
     "SCENE is an OBJ file or a built-in scene: cornell, cube, furnace, sphere.\n"
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
         if (command == "scene") return hemirad::cli::cmd_scene(argc, argv);
         if (command == "solve") return hemirad::cli::cmd_solve(argc, argv);
         if (command == "formfactors") return hemirad::cli::cmd_formfactors(argc, argv);
+        if (command == "reference") return hemirad::cli::cmd_reference(argc, argv);
         std::fprintf(stderr, "hemirad: unknown command '%s' (see hemirad --help)\n",
                      command.c_str());
         return 2;

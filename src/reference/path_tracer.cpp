@@ -1,0 +1,280 @@
+// The path-traced irradiance reference (reference.h).
+//
+// Notation, per RGB channel: x a point with unit normal n; w a direction; y(w) the first
+// surface point the ray x + t w meets; P(y) its polygon, A_P its area, n_P its normal;
+// theta_x, theta_y the angles at x and y; r = |y - x|. Radiance leaving the back of a
+// polygon is 0; leaving the front, L(y) = Ke(y) + rho(y)/pi E(y).
+//
+//   E(x) = I_e(x) + I_r(x),
+//   I_e(x) = integral Ke(y(w)) cos(theta_x) dw        (emitted radiance, front hits only)
+//   I_r(x) = integral rho(y)/pi E(y) cos(theta_x) dw  (reflected radiance, front hits only)
+//
+// One sample of E(x) (one path vertex; the path continues at y):
+//
+// I_e by two techniques, combined with the balance heuristic (Veach 1997, eq. 9.10):
+//  - light sampling: pick an emitter P with probability s_P (s_P = 1 for each emitter when
+//    they are few and all are sampled; else s_P = power_P / sum of powers, one pick), a
+//    point y uniform on P (area pdf 1/A_P). In solid angle at x the density is
+//      p_l(w) = s_P r^2 / (A_P cos(theta_y)),
+//  - cosine sampling of w: p_b(w) = cos(theta_x)/pi.
+//    With f(w) = Ke cos(theta_x), each technique contributes f/p * p/(p_l + p_b), i.e.
+//      Ke cos(theta_x) / (p_l + p_b)
+//    for an unoccluded light sample with cos(theta_x) > 0 and cos(theta_y) > 0, and for a
+//    cosine-sampled ray whose first hit is the front of an emitter. The weights of the two
+//    techniques sum to 1 wherever f != 0, so the sum is unbiased; and each contribution is
+//    at most pi Ke (p_l >= 0), so its variance is finite even at points next to an
+//    emitter's edge, where plain light sampling (Ke cos cos / r^2 A_P) has infinite
+//    variance: its second moment grows as 1/h^2 at distance h from the edge, and path
+//    vertices land at every h.
+//
+// I_r by the same cosine-sampled ray: f/p_b = rho(y)/pi E(y) cos / (cos/pi) = rho(y) E(y),
+// with E(y) estimated recursively by the same estimator (unbiased: the expectation of an
+// unbiased estimate of E(y) given y is E(y)). Russian roulette: the path continues with
+// probability q = min(1, max_c rho_c(y)) and is weighted by rho(y)/q, whose expectation is
+// rho(y) (q > 0 when any channel reflects; q = 0 only where rho = 0, and the term is 0).
+// Every channel of rho/q is <= 1, so the path's throughput beta (the product of rho/q)
+// never grows, and a path ends after a geometric number of bounces (mean <= 1/(1 - rho_max)).
+//
+// A sample of E(x) is then sum over vertices k of beta_k * (the I_e terms at vertex k).
+// max_bounces = m > 0 stops the path after m reflections (light reflected at most m times).
+#include "hemirad/reference.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <numbers>
+#include <thread>
+
+#include "core/sampling.h"
+#include "ff/bvh.h"
+#include "hemirad/error.h"
+#include "hemirad/readout.h"
+
+namespace hemirad {
+
+void validate_options(const ReferenceOptions& o) {
+    if (o.samples < 1) throw InputError("--samples " + std::to_string(o.samples) + " must be >= 1");
+    if (o.threads < 0)
+        throw InputError("--threads " + std::to_string(o.threads) +
+                         " must be >= 0 (0 = all cores)");
+    if (o.max_bounces < 0)
+        throw InputError("--max-bounces " + std::to_string(o.max_bounces) +
+                         " must be >= 0 (0 = unlimited)");
+}
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+/// Up to this many emitters, every vertex samples each of them (one point each); above it,
+/// one emitter is picked by power.
+constexpr std::size_t kSumAllEmitters = 8;
+/// Ray origins leave a surface by this fraction of the scene diagonal along its normal.
+constexpr double kOffset = 1e-9;
+
+double max_channel(const dvec3& v) {
+    return std::max({v.x, v.y, v.z});
+}
+
+class PathTracer {
+  public:
+    /// offset: how far ray origins leave a surface along its normal [unit].
+    PathTracer(const Scene& scene, int max_bounces, double offset)
+        : scene_(scene), bvh_(scene), max_bounces_(max_bounces), offset_(offset) {
+        select_.assign(scene.polygons.size(), 0.0);
+        double total = 0;
+        for (std::uint32_t i = 0; i < scene.polygons.size(); ++i) {
+            const Polygon& p = scene.polygons[i];
+            const dvec3 Ke = scene.material_of(p).Ke;
+            // Power up to the constant pi; |Ke| so that any non-zero channel can be picked.
+            const double w = p.area * (std::abs(Ke.x) + std::abs(Ke.y) + std::abs(Ke.z));
+            if (!(w > 0)) continue;
+            emitters_.push_back(i);
+            total += w;
+            cdf_.push_back(total);
+            select_[i] = w;
+        }
+        sum_all_ = emitters_.size() <= kSumAllEmitters;
+        for (const std::uint32_t i : emitters_) select_[i] = sum_all_ ? 1.0 : select_[i] / total;
+    }
+
+    /// One sample of E at x (unit normal n, on polygon `ignore` or kNoPolygon).
+    dvec3 sample(dvec3 x, dvec3 n, std::uint32_t ignore, Rng& rng) const {
+        dvec3 E(0.0), beta(1.0);
+        for (int bounce = 0;; ++bounce) {
+            E += beta * light_samples(x, n, ignore, rng);
+            dvec3 t, b;
+            orthonormal_basis(n, t, b);
+            const double u1 = rng.uniform(), u2 = rng.uniform();
+            const dvec3 w = cosine_direction(n, t, b, u1, u2);
+            const double cos_x = glm::dot(n, w);
+            if (!(cos_x > 0)) break; // measure zero: the tangent plane
+            Hit hit;
+            if (!bvh_.intersect(x, w, std::numeric_limits<double>::infinity(), hit, ignore))
+                break;             // escaped: nothing comes from outside the scene
+            if (!hit.front) break; // a back: radiance 0, and it reflects nothing either
+            const Polygon& p = scene_.polygons[hit.polygon];
+            const Material& m = scene_.material_of(p);
+            const double s = select_[hit.polygon];
+            if (s > 0) { // the cosine-sampling half of I_e
+                const double cos_y = -glm::dot(p.normal, w);
+                if (cos_y > 0) {
+                    const double p_l = s * hit.t * hit.t / (p.area * cos_y);
+                    E += beta * m.Ke * (cos_x / (p_l + cos_x / kPi));
+                }
+            }
+            if (max_bounces_ > 0 && bounce + 1 > max_bounces_) break;
+            const double q = std::min(1.0, max_channel(m.rho));
+            if (!(q > 0) || rng.uniform() >= q) break;
+            beta *= m.rho / q;
+            x = x + hit.t * w + offset_ * p.normal;
+            n = p.normal;
+            ignore = hit.polygon;
+        }
+        return E;
+    }
+
+  private:
+    /// The light-sampling half of I_e at x: sum over the sampled emitters of
+    /// Ke cos(theta_x) / (p_l + p_b) for unoccluded points facing x.
+    dvec3 light_samples(const dvec3& x, const dvec3& n, std::uint32_t ignore, Rng& rng) const {
+        dvec3 sum(0.0);
+        if (emitters_.empty()) return sum;
+        if (sum_all_) {
+            for (const std::uint32_t e : emitters_) sum += light_sample(x, n, ignore, e, rng);
+            return sum;
+        }
+        const double u = rng.uniform() * cdf_.back();
+        const std::size_t k = std::min<std::size_t>(
+            std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin(), cdf_.size() - 1);
+        return light_sample(x, n, ignore, emitters_[k], rng);
+    }
+
+    dvec3 light_sample(const dvec3& x, const dvec3& n, std::uint32_t ignore, std::uint32_t e,
+                       Rng& rng) const {
+        const double pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+        // A polygon sees nothing of itself (planar); nor does the cosine ray (ignored).
+        if (e == ignore) return dvec3(0.0);
+        const Polygon& p = scene_.polygons[e];
+        const dvec3 y = area_point(p.v.data(), p.count, pick, u1, u2);
+        const dvec3 d = y - x;
+        const double r2 = glm::dot(d, d);
+        if (!(r2 > 0)) return dvec3(0.0);
+        const dvec3 w = d / std::sqrt(r2);
+        const double cos_x = glm::dot(n, w), cos_y = -glm::dot(p.normal, w);
+        if (!(cos_x > 0 && cos_y > 0)) return dvec3(0.0);
+        if (bvh_.occluded(x, y, ignore, e)) return dvec3(0.0);
+        const double p_l = select_[e] * r2 / (p.area * cos_y);
+        return scene_.material_of(p).Ke * (cos_x / (p_l + cos_x / kPi));
+    }
+
+    const Scene& scene_;
+    Bvh bvh_;
+    int max_bounces_;
+    double offset_;                       ///< [unit]
+    std::vector<std::uint32_t> emitters_; ///< polygons with Ke != 0
+    std::vector<double> cdf_;             ///< running sums of emitters' power weights
+    std::vector<double> select_;          ///< per polygon: s_P (0 for non-emitters)
+    bool sum_all_ = true;
+};
+
+// Throws InputError for a probe the estimator cannot place (checked before any thread starts:
+// an exception must not leave a worker).
+void check_probes(const std::vector<Probe>& probes) {
+    for (std::size_t i = 0; i < probes.size(); ++i) {
+        const Probe& p = probes[i];
+        const double length = glm::length(p.normal);
+        if (!(length > 0 && std::isfinite(length)) ||
+            !std::isfinite(glm::dot(p.position, p.position)))
+            throw InputError("probe " + std::to_string(i) +
+                             ": the position and normal must be finite and the normal non-zero");
+    }
+}
+
+ReferenceValue estimate(const PathTracer& tracer, const Scene& scene, double offset,
+                        const Probe& probe, std::size_t index, const ReferenceOptions& o) {
+    ReferenceValue r;
+    dvec3 x = probe.position, n = glm::normalize(probe.normal);
+    std::uint32_t ignore = kNoPolygon;
+    if (const auto sp = find_surface(scene, probe.position, probe.normal)) {
+        // On a surface: that surface's irradiance at the projection of the probe, `offset`
+        // above it.
+        const Polygon& p = scene.polygons[sp->polygon];
+        n = p.normal;
+        x = probe.position - glm::dot(probe.position - p.v[0], n) * n + offset * n;
+        ignore = sp->polygon;
+        r.on_surface = true;
+        r.polygon = sp->polygon;
+    }
+    Rng rng(splitmix64(o.seed ^ splitmix64(std::uint64_t(index))));
+    // Welford's running mean and sum of squared deviations, per channel.
+    dvec3 mean(0.0), m2(0.0);
+    for (long k = 1; k <= o.samples; ++k) {
+        const dvec3 s = tracer.sample(x, n, ignore, rng);
+        const dvec3 delta = s - mean;
+        mean += delta / double(k);
+        m2 += delta * (s - mean);
+    }
+    r.E = mean;
+    const double N = double(o.samples);
+    r.sem = o.samples > 1 ? glm::sqrt(m2 / ((N - 1) * N))
+                          : dvec3(std::numeric_limits<double>::quiet_NaN());
+    return r;
+}
+
+} // namespace
+
+std::vector<ReferenceValue> reference_irradiance(const Scene& scene,
+                                                 const std::vector<Probe>& probes,
+                                                 const ReferenceOptions& options,
+                                                 const ReferenceProgress& progress) {
+    validate_options(options);
+    check_probes(probes);
+    std::vector<ReferenceValue> values(probes.size());
+    if (probes.empty()) return values;
+    const double offset = kOffset * scene.bounds().diagonal();
+    const PathTracer tracer(scene, options.max_bounces, offset);
+    unsigned threads = options.threads > 0 ? unsigned(options.threads)
+                                           : std::max(1u, std::thread::hardware_concurrency());
+    threads = unsigned(std::min<std::size_t>(threads, probes.size()));
+    std::atomic<std::size_t> next{0};
+    std::mutex progress_mutex;
+    std::size_t done = 0;
+    const auto work = [&] {
+        for (;;) {
+            const std::size_t i = next.fetch_add(1);
+            if (i >= probes.size()) return;
+            values[i] = estimate(tracer, scene, offset, probes[i], i, options);
+            std::lock_guard lock(progress_mutex);
+            ++done;
+            if (progress) progress(done, probes.size());
+        }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+    return values;
+}
+
+double median_relative_sem(const std::vector<ReferenceValue>& values) {
+    std::vector<double> rel;
+    for (const ReferenceValue& v : values) {
+        double worst = -1;
+        bool nan = false;
+        for (int c = 0; c < 3; ++c) {
+            if (std::isnan(v.sem[c])) nan = true;
+            if (v.E[c] > 0) worst = std::max(worst, v.sem[c] / v.E[c]);
+        }
+        if (!nan && worst >= 0) rel.push_back(worst);
+    }
+    if (rel.empty()) return 0;
+    const std::size_t mid = rel.size() / 2;
+    std::nth_element(rel.begin(), rel.begin() + mid, rel.end());
+    if (rel.size() % 2) return rel[mid];
+    const double upper = rel[mid];
+    return 0.5 * (upper + *std::max_element(rel.begin(), rel.begin() + mid));
+}
+
+} // namespace hemirad
