@@ -2,7 +2,9 @@
 """Compares two probe CSVs (hemirad solve --probe-out, hemirad reference --probe-out), row by
 row: relative error of the luminance-weighted irradiance E_Y = 0.2126 E_r + 0.7152 E_g +
 0.0722 E_b of TEST against REF. Prints median, p95, max and the worst rows; by surface group
-with --groups. Rows where REF has no value are skipped.
+with --groups. Rows where REF has no value, or a value under 1 % of REF's median (points in
+the dark, e.g. the ceiling above a light, where a relative error means nothing), are skipped
+and counted.
 
 usage: compare_probes.py TEST.csv REF.csv [--groups] [--worst N]
 """
@@ -44,15 +46,20 @@ def main(argv):
         return 2
     worst = int(argv[argv.index("--worst") + 1]) if "--worst" in argv else 0
     errs, signed, groups = [], [], {}
+    floor = 0.01 * pct([r[0] for r in ref if r is not None], 0.5)
+    dark = 0
     for k, (t, r) in enumerate(zip(test, ref)):
-        if r is None or t is None or r[0] <= 0:
+        if r is None or t is None:
+            continue
+        if r[0] <= floor:
+            dark += 1
             continue
         e = (t[0] - r[0]) / r[0]
         errs.append((abs(e), k, t[0], r[0], r[1]))
         signed.append(e)
         groups.setdefault(r[1], []).append(e)
     a = [e[0] for e in errs]
-    print(f"points {len(a)}  median {100 * pct(a, 0.5):.2f} %  p95 {100 * pct(a, 0.95):.2f} %  "
+    print(f"points {len(a)} (+{dark} dark)  median {100 * pct(a, 0.5):.2f} %  p95 {100 * pct(a, 0.95):.2f} %  "
           f"max {100 * max(a):.2f} %  mean signed {100 * sum(signed) / len(signed):+.2f} %")
     if "--groups" in argv:
         for g, v in sorted(groups.items()):

@@ -17,8 +17,11 @@
 // of polygon Q at y brings the solved reflected radiosity rho_Q * H(y) (H interpolated between
 // Q's leaf centres, readout.h); Q's own emission is not counted there (it is in the direct
 // part); a ray that escapes or hits the back of a polygon brings nothing. With pdf cos/pi the
-// estimate is E_indirect = (1/N) sum rho_Q H(y). Errors in H average over the hemisphere, so
-// a leaf straddling a shadow edge next to the point costs the point little.
+// estimate is E_indirect = (1/N) sum rho_Q H(y). Errors in H average over the hemisphere,
+// except near the point, where one leaf fills much of it (a contact line, a corner): a hit
+// nearer than 3 leaf sizes of Q estimates H(y) at y itself instead, as the direct light at y
+// (one shadow ray per emitter, times its exact unoccluded form factor) plus rho H of one
+// more cosine ray from y into the solution.
 //
 // Results depend only on the solution, the options and the point's index (each point has its
 // own generator seeded from `seed` and the index), not on the number of threads.
@@ -34,6 +37,7 @@
 namespace hemirad {
 
 class Bvh;
+class Rng;
 
 struct GatherOptions {
     int rays = 1024;             ///< indirect: cosine rays per point, 16..65536 (typical 256-4096)
@@ -76,11 +80,15 @@ class FinalGather {
   private:
     dvec3 direct(const dvec3& x, const dvec3& n, std::uint32_t self, std::uint64_t seed) const;
     dvec3 indirect(const dvec3& x, const dvec3& n, std::uint32_t self, std::uint64_t seed) const;
+    dvec3 reflected(const dvec3& origin, const dvec3& dir, std::uint32_t self, Rng& rng,
+                    bool near_path) const;
+    dvec3 direct_sample(const dvec3& y, const dvec3& n, std::uint32_t self, Rng& rng) const;
 
     const Hierarchy* h_;
     GatherOptions options_;
     std::unique_ptr<Bvh> bvh_;
     std::vector<std::uint32_t> emitters_; ///< polygons with exitance > 0
+    std::vector<double> leaf_size_;       ///< per polygon, sqrt(area) / 2^depth [unit]
     double offset_ = 0;                   ///< origin offset along the normal [unit]
 };
 

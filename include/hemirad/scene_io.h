@@ -23,6 +23,6 @@ Scene load_obj(const std::string& path);
 /// Built-in scenes: "cornell", "cube", "furnace", "sphere". Throws InputError for other names.
 Scene make_builtin(const std::string& name, const BuiltinOptions& options = {});
 bool is_builtin(const std::string& name);
-const char* builtin_names(); ///< "cornell, cube, furnace, sphere"
+const char* builtin_names(); ///< "cornell, cube, furnace, sphere, room"
 
 } // namespace hemirad

@@ -50,7 +50,7 @@ struct SolverOptions {
     /// centre; its children are shot instead. P is measured once per node, the test is made
     /// at every selection (a node that was too strong early may shoot whole later, when it
     /// holds less power). >= 0; 0 = never refine for parallax.
-    double shooter_parallax = 1e-3;
+    double shooter_parallax = 3e-4;
 };
 
 /// One shot, as reported after it (also one line of --log).

@@ -51,6 +51,13 @@ Scene make_cie56_lit_floor(double floor_exitance, bool obstruction);
 /// ceiling (flush: the ceiling is a frame around it). Groups: floor, ceiling, walls, source.
 Scene make_cie58_cube(double rho, double side = 4.0, double exitance = 1000.0);
 
+/// A closed room of side `side` (every surface reflectance `rho`) lit by a small square light
+/// (side/5 wide, exitance `exitance`, facing down) hanging side/1000 under the centre of the
+/// ceiling: the light's footprint on the ceiling is a sharp shadow edge right next to it, the
+/// hardest case for a leaf-based read-out. Groups: floor, wall_x0, wall_x1, wall_z0, wall_z1,
+/// ceiling, light. The built-in scene "room" (1 m, rho 0.5).
+Scene make_light_room(double rho = 0.5, double side = 1.0, double exitance = 1.0);
+
 /// A furnished room in the manner of paper 002 §5 (Figure 3): walls, floor, ceiling,
 /// rectangular lights under the ceiling, and "sets" of one table (top + 4 legs) with four
 /// chairs (seat, back, 4 legs), each part a box of 6 quads, plus `cabinets` extra boxes

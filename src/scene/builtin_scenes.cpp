@@ -1,10 +1,11 @@
-// Built-in scenes, available by name without files: cornell, cube, furnace, sphere.
+// Built-in scenes, available by name without files: cornell, cube, furnace, sphere, room.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "hemirad/error.h"
 #include "hemirad/scene_io.h"
+#include "hemirad/validation_scenes.h"
 
 namespace hemirad {
 
@@ -184,10 +185,11 @@ Scene sphere(const BuiltinOptions& o) {
 
 } // namespace
 
-const char* builtin_names() { return "cornell, cube, furnace, sphere"; }
+const char* builtin_names() { return "cornell, cube, furnace, sphere, room"; }
 
 bool is_builtin(const std::string& name) {
-    return name == "cornell" || name == "cube" || name == "furnace" || name == "sphere";
+    return name == "cornell" || name == "cube" || name == "furnace" || name == "sphere" ||
+           name == "room";
 }
 
 Scene make_builtin(const std::string& name, const BuiltinOptions& o) {
@@ -196,6 +198,7 @@ Scene make_builtin(const std::string& name, const BuiltinOptions& o) {
     else if (name == "cube") s = box(o, false);
     else if (name == "furnace") s = box(o, true);
     else if (name == "sphere") s = sphere(o);
+    else if (name == "room") s = validation::make_light_room(o.rho >= 0 ? o.rho : 0.5);
     else
         throw InputError("unknown built-in scene '" + name + "' (built-in: " + builtin_names() +
                          ")");

@@ -127,6 +127,19 @@ Scene make_cie58_cube(double rho, double side, double exitance) {
     return b.finish("cie58", dvec3(c, c, 0.2), dvec3(c, c, side));
 }
 
+Scene make_light_room(double rho, double side, double exitance) {
+    if (!(rho >= 0 && rho < 1)) throw InputError("light room: rho must be in [0, 1)");
+    if (!(side > 0) || !(exitance > 0))
+        throw InputError("light room: side and exitance must be positive");
+    Builder b;
+    const auto wall = b.material("wall", rho);
+    const auto light = b.material("light", rho, exitance);
+    b.room(side, side, side, wall, wall, wall, nullptr, false);
+    const double c = side / 2, w = side / 10, y = side - side / 1000;
+    b.horizontal(c - w, c + w, c - w, c + w, y, -1, light, b.group("light"));
+    return b.finish("room", dvec3(c, 0.55 * side, 0.02 * side), dvec3(c, 0.45 * side, side));
+}
+
 int bench_room_polygons(const BenchRoomOptions& o) {
     return 6 + o.lights + 174 * o.sets + 6 * o.cabinets;
 }

@@ -17,6 +17,7 @@ namespace hemirad {
 namespace {
 
 constexpr int kPenumbraSplit = 2; ///< a penumbra cell is re-sampled 4^2 = 16 times finer
+constexpr double kNearLeaves = 3;  ///< hits nearer than this many leaf sizes: evaluated at the hit
 
 bool nonzero(const dvec3& v) { return v.x > 0 || v.y > 0 || v.z > 0; }
 
@@ -38,6 +39,8 @@ FinalGather::FinalGather(const Hierarchy& h, const GatherOptions& options)
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
         if (nonzero(scene.material_of(scene.polygons[p]).exitance())) emitters_.push_back(p);
     offset_ = 1e-9 * scene.bounds().diagonal();
+    for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
+        leaf_size_.push_back(std::sqrt(scene.polygons[p].area) / double(1u << h.depth(p)));
 }
 
 FinalGather::~FinalGather() = default;
@@ -87,28 +90,60 @@ dvec3 FinalGather::direct(const dvec3& x, const dvec3& n, std::uint32_t self,
     return E;
 }
 
+dvec3 FinalGather::direct_sample(const dvec3& y, const dvec3& n, std::uint32_t self,
+                                 Rng& rng) const {
+    const Scene& scene = h_->scene();
+    dvec3 E(0.0);
+    for (std::uint32_t e : emitters_) {
+        if (e == self) continue;
+        const Polygon& P = scene.polygons[e];
+        if (glm::dot(P.normal, y - P.v[0]) <= 0) continue;
+        const double F = point_to_polygon_ff(y, n, P.v.data(), P.count);
+        if (F <= 0) continue;
+        const double pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+        if (bvh_->occluded(y, area_point(P.v.data(), P.count, pick, u1, u2), self, e)) continue;
+        E += F * scene.material_of(P).exitance();
+    }
+    return E;
+}
+
+dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_t self, Rng& rng,
+                             bool near_path) const {
+    const Scene& scene = h_->scene();
+    Hit hit;
+    if (!bvh_->intersect(origin, dir, 1e300, hit, self) || !hit.front) return dvec3(0.0);
+    const Polygon& q = scene.polygons[hit.polygon];
+    const dvec3& rho = scene.material_of(q).rho;
+    if (!(rho.x > 0 || rho.y > 0 || rho.z > 0)) return dvec3(0.0);
+    if (near_path && hit.t * glm::length(dir) < kNearLeaves * leaf_size_[hit.polygon]) {
+        // Near the point a leaf's value is too coarse (a contact shadow, a corner): estimate
+        // H(y) at the hit itself, direct light sampled there plus one more cosine ray into the
+        // solution. One sample each; the primary rays average them.
+        const dvec3 y = origin + hit.t * dir;
+        dvec3 t, b;
+        orthonormal_basis(q.normal, t, b);
+        const double u1 = rng.uniform(), u2 = rng.uniform();
+        const dvec3 next = cosine_direction(q.normal, t, b, u1, u2);
+        const dvec3 y_off = y + offset_ * q.normal;
+        return rho * (direct_sample(y, q.normal, hit.polygon, rng) +
+                      reflected(y_off, next, hit.polygon, rng, false));
+    }
+    return rho * irradiance_at(*h_, SurfacePoint{hit.polygon, hit.u, hit.v, 0.0});
+}
+
 dvec3 FinalGather::indirect(const dvec3& x, const dvec3& n, std::uint32_t self,
                             std::uint64_t seed) const {
-    const Scene& scene = h_->scene();
     Rng rng(seed);
     dvec3 t, b;
     orthonormal_basis(n, t, b);
     const int m = std::max(1, int(std::lround(std::sqrt(double(options_.rays)))));
     const dvec3 origin = x + offset_ * n;
     dvec3 sum(0.0);
-    for (int j = 0; j < m; ++j) {
+    for (int j = 0; j < m; ++j)
         for (int i = 0; i < m; ++i) {
             const double u1 = (i + rng.uniform()) / m, u2 = (j + rng.uniform()) / m;
-            const dvec3 dir = cosine_direction(n, t, b, u1, u2);
-            Hit hit;
-            if (!bvh_->intersect(origin, dir, 1e300, hit, self) || !hit.front) continue;
-            const Polygon& q = scene.polygons[hit.polygon];
-            const dvec3& rho = scene.material_of(q).rho;
-            if (!nonzero(rho)) continue;
-            const SurfacePoint sp{hit.polygon, hit.u, hit.v, 0.0};
-            sum += rho * irradiance_at(*h_, sp);
+            sum += reflected(origin, cosine_direction(n, t, b, u1, u2), self, rng, true);
         }
-    }
     return sum / double(m * m);
 }
 

@@ -25,8 +25,12 @@
 
 #include "hemirad/args.h"
 #include "hemirad/error.h"
+#include "hemirad/gather.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/json.h"
+#include "hemirad/readout.h"
+#include "hemirad/reference.h"
+#include "hemirad/report.h"
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"
 #include "hemirad/validation_scenes.h"
@@ -96,6 +100,7 @@ struct Spec {
     int resolution = 0;        ///< fixed hemicube resolution (0 = adaptive)
     double paper_seconds = 0, goal_seconds = 0;
     bool overhead = false;     ///< also measure the bare hemicube (shot_overhead_ratio)
+    bool accuracy = false;     ///< accuracy at points against `hemirad reference` instead
 };
 
 validation::BenchRoomOptions room402() { return {2, 6, 7, 0.6}; }
@@ -122,6 +127,16 @@ std::vector<Spec> experiments() {
                  cornell, cornell_leaves, 8, 0, 0.01, 60, "hemicube"});
     v.push_back({"cornell_analytic", "as cornell_hierarchical, analytic form factors",
                  cornell, cornell_leaves, 8, 0, 0.01, 60, "analytic"});
+    // Accuracy at ~400 points on every surface against the path-traced reference, with the
+    // default options and a few others (run_accuracy).
+    Spec acc{"cornell_accuracy", "Cornell box: default solve + gather vs reference at 400 points",
+             cornell};
+    acc.accuracy = true;
+    v.push_back(acc);
+    acc.name = "room_accuracy";
+    acc.description = "closed 1 m room, small light under the ceiling: as cornell_accuracy";
+    acc.scene = [] { return make_builtin("room"); };
+    v.push_back(acc);
     // Scaling: seconds per shot vs leaf patches at 402 polygons, at a fixed hemicube
     // resolution (256) so that the pixels shaded stay the same and what grows is the
     // geometry, the reduction and the update...
@@ -146,8 +161,123 @@ struct Sums {
     double links = 0;
 };
 
+double luminance(const dvec3& e) { return 0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z; }
+
+double percentile(std::vector<double> v, double q) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    const double k = q * double(v.size() - 1);
+    const std::size_t lo = std::size_t(k), hi = std::min(lo + 1, v.size() - 1);
+    return v[lo] + (v[hi] - v[lo]) * (k - double(lo));
+}
+
+// Accuracy at points: ~400 points on every surface (surface_points), the reference at 32768
+// paths per point (sem ~0.3 % of E_Y), then for each setting: solve to 1e-3, read the points
+// (final gather or leaves), relative error of E_Y. Points in the dark (reference under 1 % of
+// the median) are left out and counted. One ROW per setting.
+void run_accuracy(const Spec& spec) {
+    auto context = gl::Context::create();
+    const Scene scene = spec.scene();
+    const std::vector<Probe> probes = surface_points(scene, 400);
+    ReferenceOptions ro;
+    ro.samples = 32768;
+    const auto t_ref = Clock::now();
+    const std::vector<ReferenceValue> ref = reference_irradiance(scene, probes, ro);
+    const double ref_seconds = since(t_ref);
+    std::vector<double> ys, sems;
+    for (const ReferenceValue& r : ref) ys.push_back(luminance(r.E)), sems.push_back(luminance(r.sem));
+    const double dark = 0.01 * percentile(ys, 0.5);
+    std::vector<double> rel_sem;
+    for (std::size_t k = 0; k < ys.size(); ++k)
+        if (ys[k] > dark) rel_sem.push_back(sems[k] / ys[k]);
+
+    struct Setting {
+        const char* name;
+        std::function<void(SolverOptions&, GatherOptions&, bool&)> apply;
+    };
+    const std::vector<Setting> settings = {
+        {"default", [](SolverOptions&, GatherOptions&, bool&) {}},
+        {"--gather off", [](SolverOptions&, GatherOptions&, bool& g) { g = false; }},
+        {"--shooter-parallax 0", [](SolverOptions& o, GatherOptions&, bool&) { o.shooter_parallax = 0; }},
+        {"--shooter-parallax 0 --gather off",
+         [](SolverOptions& o, GatherOptions&, bool& g) { o.shooter_parallax = 0, g = false; }},
+        {"--shooter-parallax 1e-3", [](SolverOptions& o, GatherOptions&, bool&) { o.shooter_parallax = 1e-3; }},
+        {"--shooter-parallax 3e-3", [](SolverOptions& o, GatherOptions&, bool&) { o.shooter_parallax = 3e-3; }},
+        {"--gather-rays 256", [](SolverOptions&, GatherOptions& g, bool&) { g.rays = 256; }},
+        {"--gather-rays 4096", [](SolverOptions&, GatherOptions& g, bool&) { g.rays = 4096; }},
+        {"--tolerance 3e-3", [](SolverOptions& o, GatherOptions&, bool&) { o.tolerance = 3e-3; }},
+    };
+    Json rows = Json::array();
+    for (const Setting& set : settings) {
+        SolverOptions so;
+        so.tolerance = 1e-3;
+        so.provider.gpu.use_current_context = true;
+        GatherOptions go;
+        bool gather = true;
+        set.apply(so, go, gather);
+        Solver solver(scene, so);
+        while (solver.step()) {}
+        const Hierarchy& h = solver.solution();
+        const auto t_points = Clock::now();
+        std::vector<dvec3> E(probes.size());
+        if (gather) {
+            std::vector<GatherPoint> q;
+            for (const Probe& p : probes) {
+                const auto sp = find_surface(scene, p.position, p.normal);
+                q.push_back({p.position, p.normal, sp ? sp->polygon : GatherPoint::kNoSurface});
+            }
+            const std::vector<GatherValue> v = FinalGather(h, go).at(q);
+            for (std::size_t k = 0; k < v.size(); ++k) E[k] = v[k].E();
+        } else {
+            for (std::size_t k = 0; k < probes.size(); ++k) {
+                const auto sp = find_surface(scene, probes[k].position, probes[k].normal);
+                if (sp) E[k] = irradiance_at(h, *sp);
+            }
+        }
+        const double point_seconds = since(t_points);
+        std::vector<double> err;
+        double signed_sum = 0, mean_signed = 0;
+        for (std::size_t k = 0; k < probes.size(); ++k) {
+            if (ys[k] <= dark) continue;
+            const double e = (luminance(E[k]) - ys[k]) / ys[k];
+            err.push_back(std::abs(e));
+            signed_sum += e;
+        }
+        Json r = Json::object();
+        r["setting"] = set.name;
+        r["shots"] = solver.shots();
+        r["solve_seconds"] = solver.seconds();
+        r["point_seconds"] = point_seconds;
+        r["seconds"] = solver.seconds() + point_seconds;
+        r["median"] = percentile(err, 0.5);
+        r["p95"] = percentile(err, 0.95);
+        r["max"] = percentile(err, 1.0);
+        mean_signed = err.empty() ? 0.0 : signed_sum / double(err.size());
+        r["mean_signed"] = mean_signed;
+        rows.push_back(r);
+        std::printf("ROW %-17s %-34s shots %5ld  solve %6.2f s  points %5.2f s  median %5.2f %%  "
+                    "p95 %5.2f %%  max %6.2f %%  mean %+5.2f %%\n",
+                    spec.name.c_str(), set.name, solver.shots(), solver.seconds(), point_seconds,
+                    100 * percentile(err, 0.5), 100 * percentile(err, 0.95),
+                    100 * percentile(err, 1.0), 100 * mean_signed);
+        std::fflush(stdout);
+    }
+    Json j = Json::object();
+    j["name"] = spec.name;
+    j["description"] = spec.description;
+    j["points"] = probes.size();
+    j["dark_points"] = long(probes.size() - rel_sem.size());
+    j["reference_samples"] = ro.samples;
+    j["reference_seconds"] = ref_seconds;
+    j["reference_median_relative_sem"] = percentile(rel_sem, 0.5);
+    j["settings"] = rows;
+    j["peak_rss_mib"] = peak_rss_mib();
+    std::printf("JSON %s\n", j.dump(0).c_str());
+}
+
 // Runs one experiment in this process; prints "JSON ..." and "ROW ..." lines on stdout.
 void run_child(const Spec& spec) {
+    if (spec.accuracy) return run_accuracy(spec);
     auto context = gl::Context::create();
     const auto t_scene = Clock::now();
     const Scene scene = spec.scene();

@@ -28,7 +28,7 @@ int cmd_reference(int argc, char** argv) {
         "normal. OUT.csv has the columns of 'hemirad solve --probe-out' and the standard\n"
         "errors of the means: x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group,sem_r,sem_g,sem_b.");
     args.positional("SCENE", &scene_name,
-                    "OBJ file or built-in scene (cornell, cube, furnace, sphere)");
+                    "OBJ file or built-in scene (cornell, cube, furnace, sphere, room)");
     args.option("--probes", &probes_in, "IN.csv", "points x,y,z,nx,ny,nz to evaluate (required)");
     args.option("--probe-out", &probes_out, "OUT.csv",
                 "irradiance and its standard error at the points (required)");

@@ -20,7 +20,7 @@ int cmd_scene(int argc, char** argv) {
     BuiltinOptions builtin;
     ArgParser args("hemirad scene", "hemirad scene SCENE [--json] [options]",
                    "Loads a scene and prints what it holds.");
-    args.positional("SCENE", &name, "OBJ file or built-in scene (cornell, cube, furnace, sphere)");
+    args.positional("SCENE", &name, "OBJ file or built-in scene (cornell, cube, furnace, sphere, room)");
     args.flag("--json", &json, "print JSON instead of text");
     long points = 0;
     std::string points_out;

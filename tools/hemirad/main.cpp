@@ -23,7 +23,7 @@ const char* kUsage =
     "  reference SCENE    unbiased Monte-Carlo irradiance at probe points (the yardstick)\n"
     "  info               print the GL backend, vendor, renderer and version\n"
     "\n"
-    "SCENE is an OBJ file or a built-in scene: cornell, cube, furnace, sphere.\n"
+    "SCENE is an OBJ file or a built-in scene: cornell, cube, furnace, sphere, room.\n"
     "Run 'hemirad COMMAND --help' for a command's options.\n";
 
 } // namespace
