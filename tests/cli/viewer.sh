@@ -36,12 +36,13 @@ xvfb-run -a "$view" cornell --screenshot overlay.png --after-shots 10 --width 32
     --no-ambient --show-help --quiet
 xvfb-run -a "$view" cornell --screenshot plain.png --after-shots 10 --width 320 --height 240 \
     --no-ambient --no-overlay --quiet
-# After one shot (the shooter: a patch of the light, in view) with and without the shooter's
-# outline and the hemicube inset (top right).
+# After one shot (the shooter: a quarter-by-quarter patch of the light, in view; without the
+# parallax refinement, which would shoot a patch a quarter that size) with and without the
+# shooter's outline and the hemicube inset (top right).
 xvfb-run -a "$view" cornell --screenshot one.png --after-shots 1 --width 320 --height 240 \
-    --no-ambient --no-overlay --quiet
+    --no-ambient --no-overlay --quiet --shooter-parallax 0
 xvfb-run -a "$view" cornell --screenshot marked.png --after-shots 1 --width 320 --height 240 \
-    --no-ambient --no-overlay --highlight --inset --quiet
+    --no-ambient --no-overlay --highlight --inset --quiet --shooter-parallax 0
 # False colour with its legend.
 xvfb-run -a "$view" cornell --screenshot false.png --after-shots 10 --width 320 --height 240 \
     --false-colour --no-overlay --quiet
