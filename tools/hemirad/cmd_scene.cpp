@@ -8,7 +8,10 @@
 
 namespace hemirad::cli {
 
-void add_scene_options(ArgParser& args, BuiltinOptions& o) { add_builtin_scene_options(args, o); }
+void add_scene_options(ArgParser& args, BuiltinOptions& o, ObjOptions& obj) {
+    add_builtin_scene_options(args, o);
+    add_obj_scene_options(args, obj);
+}
 
 void print_warnings(const Scene& scene, bool quiet) { print_scene_warnings("hemirad", scene, quiet); }
 
@@ -16,14 +19,15 @@ int cmd_scene(int argc, char** argv) {
     std::string name;
     bool json = false;
     BuiltinOptions builtin;
+    ObjOptions obj;
     ArgParser args("hemirad scene", "hemirad scene SCENE [--json] [options]",
                    "Loads a scene and prints what it holds.");
     args.positional("SCENE", &name, "OBJ file or built-in scene (cornell, cube, furnace, sphere)");
     args.flag("--json", &json, "print JSON instead of text");
-    add_scene_options(args, builtin);
+    add_scene_options(args, builtin, obj);
     if (!args.parse(argc, argv, 2)) return 0;
 
-    const Scene scene = load_scene(name, builtin);
+    const Scene scene = load_scene(name, builtin, obj);
     const Bounds b = scene.bounds();
     const dvec3 power = scene.emitted_power();
     if (json) {

@@ -218,6 +218,7 @@ int run(int argc, char** argv) {
     Options o;
     SolverOptions so;
     BuiltinOptions builtin;
+    ObjOptions obj;
     ArgParser args(kTool, "hemirad-preview SCENE --out DIR --every N [options]",
                    "Solves a scene by progressive shooting and writes a frame of the solution\n"
                    "every N shots (or T seconds) as DIR/frame_SHOT.png, then\n"
@@ -246,6 +247,7 @@ int run(int argc, char** argv) {
     args.option("--backend", &so.provider.gpu.backend, "NAME", "GL backend: auto, egl, osmesa");
     args.option("--device", &so.provider.gpu.device, "N", "EGL device index (-1 = default)");
     add_builtin_scene_options(args, builtin);
+    add_obj_scene_options(args, obj);
     if (!args.parse(argc, argv)) return 0;
     validate(o, args);
     // Parse everything the user gave before any slow work.
@@ -255,7 +257,7 @@ int run(int argc, char** argv) {
     make_directory(o.out);
     const std::filesystem::path dir(o.out);
 
-    const Scene scene = load_scene(o.scene, builtin);
+    const Scene scene = load_scene(o.scene, builtin, obj);
     print_scene_warnings(kTool, scene, o.quiet);
     const Camera camera =
         user_camera ? *user_camera : default_camera(scene);

@@ -301,6 +301,7 @@ int run(int argc, char** argv) {
     Options o;
     SolverOptions so;
     BuiltinOptions builtin;
+    ObjOptions obj;
     ArgParser args(kTool, "hemirad-view SCENE [options]",
                    "Opens a window on a scene, solves it progressively between frames and\n"
                    "shows the solution as it converges. Press H in the window for the keys.\n"
@@ -332,6 +333,7 @@ int run(int argc, char** argv) {
     args.flag("--quiet", &o.quiet, "print nothing but errors");
     add_solver_options(args, so);
     add_builtin_scene_options(args, builtin);
+    add_obj_scene_options(args, obj);
     if (!args.parse(argc, argv)) return 0;
     validate(o, args);
     std::optional<Camera> user_camera;
@@ -339,7 +341,7 @@ int run(int argc, char** argv) {
     const bool scripted = !o.screenshot.empty() || o.after_shots >= 0 || o.frames > 0;
 
     // Load the scene before opening a window: a bad scene is an error message, not a window.
-    const Scene scene = load_scene(o.scene, builtin);
+    const Scene scene = load_scene(o.scene, builtin, obj);
     print_scene_warnings(kTool, scene, o.quiet);
 
     glfwSetErrorCallback(on_glfw_error);
