@@ -292,7 +292,7 @@ fs::path find_library(const std::string& obj, const std::string& name, std::stri
         std::error_code ec;
         if (fs::is_regular_file(p, ec)) {
             how = what;
-            return p;
+            return p.lexically_normal();
         }
     }
     return {};

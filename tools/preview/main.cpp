@@ -36,6 +36,7 @@ struct Options {
     int width = 256, height = 256;
     std::string camera;         ///< "ex,ey,ez,tx,ty,tz,ux,uy,uz,fov"; empty: scene default
     bool no_ambient = false, flat = false, exr = false, quiet = false;
+    bool two_sided = false;     ///< draw the backs of polygons (black) instead of culling
     double exposure = 0;        ///< [stops] on top of each frame's auto exposure
     int sheet_frames = 24;      ///< at most this many frames on the contact sheet
     int sheet_columns = 6;
@@ -237,6 +238,8 @@ int run(int argc, char** argv) {
     args.flag("--no-ambient", &o.no_ambient,
               "render without the ambient term (unshot light then shows as black)");
     args.flag("--flat-shading", &o.flat, "one colour per patch instead of smooth shading");
+    args.flag("--two-sided", &o.two_sided,
+              "draw the backs of polygons (black) instead of culling them");
     args.option("--exposure", &o.exposure, "STOPS", "added to each frame's automatic exposure");
     args.flag("--exr", &o.exr, "also write each frame as linear EXR (frame_SHOT.exr)");
     args.option("--sheet-frames", &o.sheet_frames, "N",
@@ -284,6 +287,7 @@ int run(int argc, char** argv) {
     ro.height = o.height;
     ro.ambient = !o.no_ambient;
     ro.shading = o.flat ? RenderOptions::Shading::Flat : RenderOptions::Shading::Smooth;
+    ro.two_sided = o.two_sided;
     ToneMap tm;
     tm.exposure = o.exposure;
 
