@@ -2,13 +2,13 @@
 // surfaces, found by casting a coarse grid of rays from a few candidate cameras.
 //
 // Candidates: six views from outside, each framing the bounding box from one side (looking
-// along -z, +z, -x, +x, down, up), and four from inside, just within one side of the box at
-// mid-height, looking across it. Each is scored on a kGrid x kGrid grid of rays through its
-// image: a ray whose nearest hit (either side) is the front of a polygon counts that
-// polygon's weight — 1 if it emits or faces an emitter that faces it (a cheap test of direct
-// light, without occlusion), 0.25 if it can only be lit indirectly, 0 if it is black (rho 0,
-// no emission); a ray that meets the back of a polygon first, or nothing, counts 0. The score
-// is the mean weight: the part of the image that would show lit surfaces even if the backs of
+// along +z, -z, +x, -x, down, up), and four from inside, one from each vertical corner of the
+// box at mid-height looking across it to its centre (90 degrees wide). Each is scored on a kGrid x
+// kGrid grid of rays through its image: a ray whose nearest hit (either side) is the front of a
+// polygon counts that polygon's weight — 1 if it emits or faces an emitter that faces it (a cheap
+// test of direct light, without occlusion), 0.25 if it can only be lit indirectly, 0 if it is black
+// (rho 0, no emission); a ray that meets the back of a polygon first, or nothing, counts 0. The
+// score is the mean weight: the part of the image that would show lit surfaces even if the backs of
 // polygons were drawn.
 //
 // The best outside view is chosen unless it shows less than kMinShown, or less than half of
@@ -30,6 +30,7 @@ namespace {
 
 constexpr int kGrid = 32;            ///< rays per side of a candidate's image
 constexpr double kOutsideFov = 40.0; ///< [degrees] vertical, the views from outside
+constexpr double kInsideFov = 90.0;  ///< [degrees] vertical, the views from inside
 constexpr double kMinShown = 0.05;   ///< least score for a view to count as showing something
 constexpr int kMaxEmitters = 64;     ///< emitters used in the direct-light test (most powerful)
 
@@ -104,17 +105,15 @@ std::vector<Candidate> candidates(const Bounds& b) {
         const double distance = 0.5 * extent[axis] + 1.05 * half / t;
         out.push_back({make_camera(centre - distance * dir, dir, up, kOutsideFov), false});
     }
-    // Inside: at mid-height, 5 % of the box within one side, looking across the box.
-    for (const auto& [axis, sign] : order) {
-        if (axis == 1) continue;
-        dvec3 dir(0.0);
-        dir[axis] = sign;
-        const double across = 0.9 * extent[axis];
-        const double half = 0.5 * std::max(extent[axis == 0 ? 2 : 0], extent[1]);
-        const double fov =
-            std::clamp(2 * std::atan(half / across) * 180 / std::numbers::pi, 40.0, 100.0);
+    // Inside: from each vertical corner (8 % of the box in from both walls, at mid-height)
+    // across the room to its centre, wide-angle, the way a room is photographed: two walls,
+    // the floor, the ceiling and what hangs from it.
+    const double fx[4] = {0.08, 0.92, 0.08, 0.92}, fz[4] = {0.08, 0.08, 0.92, 0.92};
+    for (int k = 0; k < 4; ++k) {
+        const dvec3 eye = b.lo + extent * dvec3(fx[k], 0.5, fz[k]);
+        const dvec3 target = centre;
         out.push_back(
-            {make_camera(centre - 0.45 * extent[axis] * dir, dir, dvec3(0, 1, 0), fov), true});
+            {make_camera(eye, glm::normalize(target - eye), dvec3(0, 1, 0), kInsideFov), true});
     }
     return out;
 }
