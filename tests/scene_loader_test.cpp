@@ -405,6 +405,66 @@ TEST(SharedScenes, TinyObjLoaderModels) {
     EXPECT_EQ(loaded, files - int(refused.size()));
 }
 
+// --- Writing scenes as OBJ (hemirad scene NAME --obj), and the files of assets/ ----------------
+
+class BuiltinAsObj : public ::testing::TestWithParam<const char*> {};
+
+// Every built-in scene written as OBJ/MTL reads back as the same scene: same polygons, corners,
+// materials and groups (content hash), without a warning.
+TEST_P(BuiltinAsObj, ReadsBackAsTheSameScene) {
+    const Scene s = make_builtin(GetParam());
+    const fs::path dir = fs::temp_directory_path() / ("hemirad_obj_" + std::string(GetParam()));
+    fs::create_directories(dir);
+    const std::string obj = (dir / "scene.obj").string();
+    EXPECT_EQ(write_obj(s, obj), (dir / "scene.mtl").string());
+    Scene r = load_obj(obj);
+    fs::remove_all(dir);
+    ASSERT_EQ(r.polygons.size(), s.polygons.size());
+    // A file numbers groups in order of first use (the sphere's cap comes first): renumber
+    // them as in the built-in scene, then everything must be the same.
+    ASSERT_EQ(r.groups.size(), s.groups.size());
+    for (Polygon& p : r.polygons) p.group = std::uint32_t(s.find_group(r.groups[p.group]));
+    r.groups = s.groups;
+    EXPECT_EQ(r.content_hash(), s.content_hash());
+    for (const std::string& w : r.warnings) // at most the warning the built-in scene has too
+        EXPECT_NE(w.find("no surface emits"), std::string::npos) << w;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, BuiltinAsObj,
+                         ::testing::Values("cornell", "cube", "furnace", "sphere", "cie53",
+                                           "cie56", "cie57", "cie58", "room402", "scene3138"));
+
+TEST(BuiltinAsObj, BadFileName) {
+    EXPECT_THROW(write_obj(make_builtin("cube"), "scene.txt"), InputError);
+}
+
+class Assets : public ::testing::TestWithParam<const char*> {};
+
+// assets/NAME.obj is the built-in scene NAME (tools/make_assets.sh writes them): if a built-in
+// changes, run the script again.
+TEST_P(Assets, FileIsTheBuiltinScene) {
+    const std::string path = std::string(HEMIRAD_SOURCE_DIR) + "/assets/" + GetParam() + ".obj";
+    const Scene a = load_obj(path);
+    const Scene b = make_builtin(GetParam());
+    EXPECT_EQ(a.content_hash(), b.content_hash())
+        << path << " differs from the built-in scene; run tools/make_assets.sh";
+    EXPECT_TRUE(a.warnings.empty()) << all_warnings(a);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, Assets,
+                         ::testing::Values("cornell", "cie53", "cie56", "cie57", "cie58",
+                                           "room402", "scene3138"));
+
+TEST(Assets, CubeRoom) {
+    const Scene s = load_obj(std::string(HEMIRAD_SOURCE_DIR) + "/assets/cube_room.obj");
+    EXPECT_TRUE(s.warnings.empty()) << all_warnings(s);
+    EXPECT_EQ(s.polygons.size(), 7u);
+    EXPECT_NEAR(s.emitted_power().x, 1000.0 * 0.6 * 0.6, 1e-9); // exitance 1000 on 0.36 m^2
+    EXPECT_NEAR(s.total_area(), 6 * 9 + 0.36, 1e-9);
+    const dvec3 centre(1.5);
+    for (const Polygon& p : s.polygons) EXPECT_GT(glm::dot(p.normal, centre - p.centroid()), 0);
+}
+
 TEST(Builtin, CornellLightPowerAndGroups) {
     const Scene s = make_builtin("cornell");
     EXPECT_EQ(s.groups.size(), 8u);

@@ -53,7 +53,8 @@ void add_builtin_scene_options(ArgParser& args, BuiltinOptions& o) {
     args.option("--subdiv", &o.subdiv, "N",
                 "cube, furnace: split each face into NxN polygons (1..1000)");
     args.option("--rho", &o.rho, "R",
-                "reflectance of every surface, in [0,1); negative = the scene's own");
+                "cornell, cube, furnace, sphere, cie58: reflectance of every surface, in [0,1); "
+                "negative = the scene's own (cie58: 0.5)");
     args.option("--rings", &o.sphere_rings, "N", "sphere: latitude rings (4..512)");
 }
 

@@ -16,18 +16,25 @@ void add_scene_options(ArgParser& args, BuiltinOptions& o, ObjOptions& obj) {
 void print_warnings(const Scene& scene, bool quiet) { print_scene_warnings("hemirad", scene, quiet); }
 
 int cmd_scene(int argc, char** argv) {
-    std::string name;
+    std::string name, obj_out;
     bool json = false;
     BuiltinOptions builtin;
     ObjOptions obj;
-    ArgParser args("hemirad scene", "hemirad scene SCENE [--json] [options]",
-                   "Loads a scene and prints what it holds.");
-    args.positional("SCENE", &name, "OBJ file or built-in scene (cornell, cube, furnace, sphere)");
+    ArgParser args("hemirad scene", "hemirad scene SCENE [--json] [--obj FILE.obj] [options]",
+                   "Loads a scene and prints what it holds; writes it as OBJ/MTL with --obj.");
+    args.positional("SCENE", &name, std::string("OBJ file or built-in scene (") + builtin_names() + ")");
     args.flag("--json", &json, "print JSON instead of text");
+    args.option("--obj", &obj_out, "FILE.obj",
+                "also write the scene as OBJ, with its materials in FILE.mtl beside it (how "
+                "the files in assets/ are made from the built-in scenes)");
     add_scene_options(args, builtin, obj);
     if (!args.parse(argc, argv, 2)) return 0;
 
     const Scene scene = load_scene(name, builtin, obj);
+    if (!obj_out.empty()) {
+        const std::string mtl = write_obj(scene, obj_out);
+        std::fprintf(stderr, "hemirad: wrote %s and %s\n", obj_out.c_str(), mtl.c_str());
+    }
     const Bounds b = scene.bounds();
     const dvec3 power = scene.emitted_power();
     if (json) {

@@ -65,7 +65,7 @@ int cmd_solve(int argc, char** argv) {
     ArgParser args("hemirad solve", "hemirad solve SCENE [options]",
                    "Solves the radiosity of a scene by progressive shooting until the error\n"
                    "bound falls under the tolerance, then writes what was asked for.");
-    args.positional("SCENE", &scene_name, "OBJ file or built-in scene (cornell, cube, furnace, sphere)");
+    args.positional("SCENE", &scene_name, std::string("OBJ file or built-in scene (") + builtin_names() + ")");
     add_solver_options(args, so);
     args.section("output");
     args.option("--report", &report, "FILE.json", "write a JSON report");

@@ -22,7 +22,8 @@ const char* kUsage =
     "  formfactors SCENE  form factors from one surface group to every group (paper 000)\n"
     "  info               print the GL backend, vendor, renderer and version\n"
     "\n"
-    "SCENE is an OBJ file or a built-in scene: cornell, cube, furnace, sphere.\n"
+    "SCENE is an OBJ file or a built-in scene: cornell, cube, furnace, sphere, cie53, cie56,\n"
+    "cie57, cie58, room402, scene3138 (the files in assets/ hold them too).\n"
     "Run 'hemirad COMMAND --help' for a command's options.\n";
 
 } // namespace

@@ -225,7 +225,7 @@ int run(int argc, char** argv) {
                    "every N shots (or T seconds) as DIR/frame_SHOT.png, then\n"
                    "DIR/contact_sheet.png, DIR/convergence.png and DIR/convergence.csv.");
     args.positional("SCENE", &o.scene,
-                    "OBJ file or built-in scene (cornell, cube, furnace, sphere)");
+                    std::string("OBJ file or built-in scene (") + builtin_names() + ")");
     args.section("frames");
     args.option("--out", &o.out, "DIR", "output directory (created if missing)");
     args.option("--every", &o.every, "N", "write a frame every N shots (0 = only by time)");

@@ -311,7 +311,7 @@ int run(int argc, char** argv) {
                    "shows the solution as it converges. Press H in the window for the keys.\n"
                    "With --screenshot, --after-shots or --frames it saves a frame and exits.");
     args.positional("SCENE", &o.scene,
-                    "OBJ file or built-in scene (cornell, cube, furnace, sphere)");
+                    std::string("OBJ file or built-in scene (") + builtin_names() + ")");
     args.section("window");
     args.option("--width", &o.width, "W", "window width [pixels]");
     args.option("--height", &o.height, "H", "window height [pixels]");
