@@ -121,7 +121,8 @@ TEST_F(RenderGLTest, EmittingQuadFillingTheViewShowsItsExitance) {
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
-// The background shows where no surface is, and the back of a polygon is black.
+// The background shows where no surface is; the back of a polygon is culled, or with
+// two_sided drawn black.
 TEST_F(RenderGLTest, BackgroundAndBackFaces) {
     Scene s = plane_scene({{"light", dvec3(0.5), dvec3(1.0)}});
     add_rect(s, -1, -1, 0, 1, 0); // left half of the view only
@@ -134,8 +135,15 @@ TEST_F(RenderGLTest, BackgroundAndBackFaces) {
     EXPECT_NEAR(front.at(2, 8)[0], std::numbers::pi, 1e-5);
     EXPECT_FLOAT_EQ(front.at(13, 8)[2], 0.75f);
     Camera below = top_view(0, 0, 1, -2.0); // from -z: the back of the polygon
+    // Culled by default: the background shows where the polygon's back is.
+    const ImageRGB culled = r.render(h, below, o);
+    EXPECT_FLOAT_EQ(culled.at(13, 8)[2], 0.75f);
+    EXPECT_FLOAT_EQ(culled.at(2, 8)[2], 0.75f);
+    // Two-sided: the back is drawn, black (it leaves no light).
+    o.two_sided = true;
     const ImageRGB back = r.render(h, below, o);
     EXPECT_FLOAT_EQ(back.at(13, 8)[0], 0.0f); // x is mirrored from below: the polygon is right
+    EXPECT_FLOAT_EQ(back.at(13, 8)[2], 0.0f);
     EXPECT_FLOAT_EQ(back.at(2, 8)[2], 0.75f);
 }
 

@@ -15,7 +15,7 @@ packages=(
   build-essential cmake pkg-config python3
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev   # headless GL: EGL (default), OSMesa
   libglfw3-dev libglm-dev python3-glad                     # viewer window, maths, GL loader
-  libopenexr-dev libpng-dev zlib1g-dev libtinyobjloader-dev libgtest-dev
+  libopenexr-dev libpng-dev zlib1g-dev libgtest-dev
   xvfb xauth                                               # the viewer's tests run under Xvfb
 )
 

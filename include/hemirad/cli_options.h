@@ -18,6 +18,9 @@ void add_solver_options(ArgParser& args, SolverOptions& so);
 /// --subdiv, --rho, --rings.
 void add_builtin_scene_options(ArgParser& args, BuiltinOptions& o);
 
+/// --max-reflectance.
+void add_obj_scene_options(ArgParser& args, ObjOptions& o);
+
 /// Prints "TOOL: warning: SOURCE: ..." for each scene warning unless quiet.
 void print_scene_warnings(const char* tool, const Scene& scene, bool quiet);
 

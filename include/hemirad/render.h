@@ -5,7 +5,8 @@
 // Pixel values are the displayed quantity itself, unscaled: radiosity B [W unit^-2] (or
 // irradiance E [W unit^-2] with Quantity::Irradiance). The radiance of a diffuse surface is
 // B / pi; we keep B so that an image pixel and a report number are the same quantity.
-// The back of a polygon (which emits and reflects nothing) shows as 0 (black).
+// The back of a polygon emits and reflects nothing: it is culled by default, so that a camera
+// outside a closed room sees into it; with RenderOptions::two_sided it is drawn black (0).
 #pragma once
 
 #include <memory>
@@ -30,6 +31,9 @@ struct RenderOptions {
     dvec3 ambient_irradiance{0.0};  ///< Solver::ambient_irradiance(), used when ambient is on
     enum class Quantity { Radiosity, Irradiance } quantity = Quantity::Radiosity;
     dvec3 background{0.0};          ///< where no surface is (written as is, not scaled)
+    /// Draw the backs of polygons (as 0, black: they leave no light) instead of culling them
+    /// (default: culled, so that what is behind them shows).
+    bool two_sided = false;
     /// Display helpers for draw() into a window (the viewer); render() for files keeps the
     /// defaults, which give physical values. Every value is multiplied by `scale` (> 0,
     /// default 1); then, if `tone_map`, extended Reinhard on luminance (white point
@@ -51,9 +55,15 @@ struct RenderOptions {
 /// the view direction, fov out of range).
 Camera parse_camera(const std::string& text);
 
-/// The scene's default view: scene.cameras[0], or, if it has none, a camera on the -z side of
-/// the bounding box looking at its centre (+z), y up, 40 degrees, framing the whole box.
+/// The scene's default view: scene.cameras[0], or, if it has none, frame_scene(scene).
 Camera default_camera(const Scene& scene);
+
+/// A view that shows the scene's lit surfaces, for a scene without a camera (default_view.cpp):
+/// the bounding box framed from outside, from the side that shows most lit front faces with
+/// nothing in front of them (the open side of a box), or, where every side shows only the
+/// backs of walls (a closed room), a view from inside across the room. Named "default".
+/// Casts 32 x 32 rays from each of 10 candidate cameras (a BVH of the scene is built).
+Camera frame_scene(const Scene& scene);
 
 /// GL resources for drawing one scene's solution; needs a current GL 4.5 context (create a
 /// gl::Context first, or run inside the viewer's window). The scene must outlive it.

@@ -52,7 +52,8 @@ struct Scene {
     std::vector<Polygon> polygons;
     std::vector<Material> materials;
     std::vector<std::string> groups;   ///< surface-group names (OBJ g/o, else material name)
-    std::vector<Camera> cameras;       ///< cameras[0] is the default view
+    /// cameras[0] is the default view; without one, default_camera() (render.h) frames the scene
+    std::vector<Camera> cameras;
     std::vector<std::string> warnings; ///< things the loader fixed or dropped, for reports
 
     const Material& material_of(const Polygon& p) const { return materials[p.material]; }
@@ -81,7 +82,7 @@ AddResult add_polygon(Scene& scene, const std::vector<dvec3>& corners, std::uint
                       std::uint32_t group, double planarity_tolerance = 1e-6);
 
 /// Checks a finished scene: at least one polygon (else InputError naming `origin`); adds a
-/// warning when nothing emits. Called by every loader.
+/// warning when nothing emits. Called by every loader. Adds no camera.
 void finish_scene(Scene& scene, const std::string& origin);
 
 } // namespace hemirad

@@ -14,15 +14,42 @@ struct BuiltinOptions {
     int sphere_rings = 16;  ///< sphere: latitude rings (>= 4); longitude segments = 2x rings
 };
 
+/// Options of OBJ/MTL files.
+struct ObjOptions {
+    /// Reflectance used for a Kd channel of 1 or more (a surface can't reflect all the light it
+    /// receives; exporters write Kd 1 for white), in (0, 1). Kd values under 1 are kept as given.
+    double max_reflectance = 0.98;
+};
+
 /// Loads "NAME" (a built-in scene) or a path to an OBJ file. Throws InputError on bad input.
-Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin = {});
+Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin = {},
+                 const ObjOptions& obj = {});
 
-/// Loads an OBJ file (and the MTL files it names). Throws InputError naming file and line.
-Scene load_obj(const std::string& path);
+/// Loads an OBJ file and the MTL files it names (obj_loader.cpp lists what is tolerated, with a
+/// warning each, and what is an error). Throws InputError naming file, line and value.
+Scene load_obj(const std::string& path, const ObjOptions& options = {});
 
-/// Built-in scenes: "cornell", "cube", "furnace", "sphere". Throws InputError for other names.
+/// A scene as the text of an OBJ file and its MTL (named `mtl_name` in `mtllib`): each distinct
+/// polygon corner once as `v` (shortest decimal that reads back to the same double), faces in
+/// polygon order with `g` and `usemtl` where they change, every material with its Kd (and Ke
+/// if not 0); cameras as comments. load_obj() of the files gives the same scene: the same
+/// content_hash() once groups are numbered alike (a file numbers them in order of first use),
+/// as long as group and material names are unique and free of line breaks.
+struct ObjText {
+    std::string obj, mtl;
+};
+ObjText scene_obj_text(const Scene& scene, const std::string& mtl_name);
+
+/// Writes the scene to `obj_path` (ending in .obj) and its MTL beside it (same name, .mtl),
+/// atomically. Returns the MTL's path. Throws InputError for a bad name, RuntimeError when a
+/// file cannot be written.
+std::string write_obj(const Scene& scene, const std::string& obj_path);
+
+/// Built-in scenes: "cornell", "cube", "furnace", "sphere", "room" (make_light_room); the CIE 171 rooms "cie53", "cie56",
+/// "cie57", "cie58" (options.rho, default 0.5) and paper 002's benchmark rooms "room402",
+/// "scene3138" (validation_scenes.h). Throws InputError for other names.
 Scene make_builtin(const std::string& name, const BuiltinOptions& options = {});
 bool is_builtin(const std::string& name);
-const char* builtin_names(); ///< "cornell, cube, furnace, sphere, room"
+const char* builtin_names(); ///< "cornell, cube, furnace, sphere, room, cie53, ..., scene3138"
 
 } // namespace hemirad

@@ -56,14 +56,26 @@ void add_builtin_scene_options(ArgParser& args, BuiltinOptions& o) {
     args.option("--subdiv", &o.subdiv, "N",
                 "cube, furnace: split each face into NxN polygons (1..1000)");
     args.option("--rho", &o.rho, "R",
-                "reflectance of every surface, in [0,1); negative = the scene's own");
+                "cornell, cube, furnace, sphere, cie58: reflectance of every surface, in [0,1); "
+                "negative = the scene's own (cie58: 0.5)");
     args.option("--rings", &o.sphere_rings, "N", "sphere: latitude rings (4..512)");
+}
+
+void add_obj_scene_options(ArgParser& args, ObjOptions& o) {
+    args.section("scene files");
+    args.option("--max-reflectance", &o.max_reflectance, "R",
+                "OBJ/MTL: reflectance used for a Kd channel of 1 or more, in (0,1) (a surface "
+                "can't reflect all the light it receives)");
 }
 
 void print_scene_warnings(const char* tool, const Scene& scene, bool quiet) {
     if (quiet) return;
-    for (const std::string& w : scene.warnings)
-        std::fprintf(stderr, "%s: warning: %s: %s\n", tool, scene.source.c_str(), w.c_str());
+    for (const std::string& w : scene.warnings) {
+        // A warning that names a place in the scene file itself needs no second file name.
+        const bool placed = w.rfind(scene.source + ":", 0) == 0;
+        std::fprintf(stderr, "%s: warning: %s%s%s\n", tool, placed ? "" : scene.source.c_str(),
+                     placed ? "" : ": ", w.c_str());
+    }
 }
 
 } // namespace hemirad

@@ -121,6 +121,7 @@ public:
         glGetIntegerv(GL_CLIP_DEPTH_MODE, &clip_depth_);
         glGetIntegerv(GL_DEPTH_FUNC, &depth_func_);
         glGetIntegerv(GL_FRONT_FACE, &front_face_);
+        glGetIntegerv(GL_CULL_FACE_MODE, &cull_face_mode_);
         glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_);
         glGetIntegerv(GL_BLEND_SRC_RGB, &blend_func_[0]);
         glGetIntegerv(GL_BLEND_DST_RGB, &blend_func_[1]);
@@ -139,6 +140,7 @@ public:
         glClipControl(GLenum(clip_origin_), GLenum(clip_depth_));
         glDepthFunc(GLenum(depth_func_));
         glFrontFace(GLenum(front_face_));
+        glCullFace(GLenum(cull_face_mode_));
         glDepthMask(depth_mask_);
         glBlendFuncSeparate(GLenum(blend_func_[0]), GLenum(blend_func_[1]), GLenum(blend_func_[2]),
                             GLenum(blend_func_[3]));
@@ -154,7 +156,7 @@ private:
 
     GLint draw_fb_ = 0, read_fb_ = 0, viewport_[4] = {}, program_ = 0, vao_ = 0;
     GLint clip_origin_ = GL_LOWER_LEFT, clip_depth_ = GL_NEGATIVE_ONE_TO_ONE;
-    GLint depth_func_ = GL_LESS, front_face_ = GL_CCW;
+    GLint depth_func_ = GL_LESS, front_face_ = GL_CCW, cull_face_mode_ = GL_BACK;
     GLint blend_func_[4] = {GL_ONE, GL_ZERO, GL_ONE, GL_ZERO}; ///< src/dst RGB, src/dst alpha
     GLboolean depth_mask_ = GL_TRUE, depth_test_ = GL_FALSE, cull_ = GL_FALSE, blend_ = GL_FALSE;
 };
@@ -237,21 +239,6 @@ Camera parse_camera(const std::string& text) {
         s << "camera '" << text << "': fov " << c.fov_y_deg << " must be in (0, 180) degrees";
         throw InputError(s.str());
     }
-    return c;
-}
-
-Camera default_camera(const Scene& scene) {
-    if (!scene.cameras.empty()) return scene.cameras[0];
-    const Bounds b = scene.bounds();
-    const dvec3 centre = 0.5 * (b.lo + b.hi);
-    Camera c;
-    c.fov_y_deg = 40;
-    // Far enough on -z that a sphere around the box fits in the field of view.
-    const double radius = 0.5 * std::max(b.diagonal(), 1e-9);
-    const double distance = radius / std::sin(0.5 * c.fov_y_deg * std::numbers::pi / 180);
-    c.eye = centre - dvec3(0, 0, distance);
-    c.target = centre;
-    c.up = dvec3(0, 1, 0);
     return c;
 }
 
@@ -499,7 +486,12 @@ void SolutionRenderer::Impl::draw_scene(const Camera& camera, const RenderOption
     glDepthFunc(GL_GREATER);
     glDepthMask(GL_TRUE);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-    glDisable(GL_CULL_FACE);
+    if (o.two_sided) {
+        glDisable(GL_CULL_FACE);
+    } else {
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+    }
     glDisable(GL_BLEND);
     glFrontFace(GL_CCW);
     glUseProgram(program.id());

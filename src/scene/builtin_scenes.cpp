@@ -1,4 +1,6 @@
-// Built-in scenes, available by name without files: cornell, cube, furnace, sphere, room.
+// Built-in scenes, available by name without files: cornell, cube, furnace, sphere, room, and the
+// validation and benchmark rooms of validation_scenes.h (cie53, cie56, cie57, cie58, room402,
+// scene3138).
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -185,20 +187,38 @@ Scene sphere(const BuiltinOptions& o) {
 
 } // namespace
 
-const char* builtin_names() { return "cornell, cube, furnace, sphere, room"; }
+const char* builtin_names() {
+    return "cornell, cube, furnace, sphere, room, cie53, cie56, cie57, cie58, room402, scene3138";
+}
 
 bool is_builtin(const std::string& name) {
-    return name == "cornell" || name == "cube" || name == "furnace" || name == "sphere" ||
-           name == "room";
+    for (const char* n : {"cornell", "cube", "furnace", "sphere", "room", "cie53", "cie56",
+                          "cie57", "cie58", "room402", "scene3138"})
+        if (name == n) return true;
+    return false;
 }
 
 Scene make_builtin(const std::string& name, const BuiltinOptions& o) {
+    namespace v = validation;
+    // The validation and benchmark rooms, as the tests and hemirad-bench build them.
+    const double floor_exitance = v::kCie56FloorReflectance * v::kCie56FloorIlluminance;
+    Scene room;
+    if (name == "cie53") room = v::make_cie53_area_source();
+    else if (name == "cie56") room = v::make_cie56_lit_floor(floor_exitance, false);
+    else if (name == "cie57") room = v::make_cie56_lit_floor(floor_exitance, true);
+    else if (name == "cie58") room = v::make_cie58_cube(reflectance(o, 0.5));
+    else if (name == "room402") room = v::make_bench_room({2, 6, 7, 0.6});
+    else if (name == "scene3138") room = v::make_bench_room({17, 6, 28, 0.6});
+    else if (name == "room") room = v::make_light_room(reflectance(o, 0.5));
+    if (!room.polygons.empty()) {
+        room.source = "builtin:" + name;
+        return room;
+    }
     Scene s;
     if (name == "cornell") s = cornell(o);
     else if (name == "cube") s = box(o, false);
     else if (name == "furnace") s = box(o, true);
     else if (name == "sphere") s = sphere(o);
-    else if (name == "room") s = validation::make_light_room(o.rho >= 0 ? o.rho : 0.5);
     else
         throw InputError("unknown built-in scene '" + name + "' (built-in: " + builtin_names() +
                          ")");

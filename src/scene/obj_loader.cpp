@@ -1,6 +1,23 @@
-// OBJ/MTL loading through tinyobjloader, with a validating pre-scan of our own so that every
-// error names the file, the line and the value (tinyobjloader reports few line numbers and
-// silently reads garbage as 0).
+// OBJ/MTL reading by a parser of our own, so that every message names the file, the line and
+// the value, and so that files as exporters write them load without hand edits.
+//
+// Tolerated, with one warning per kind naming the first file:line (and how many more):
+//   - statements we do not use: `l`, `p` (no area), `vp`, `t` (crease tags), `vw` (skin
+//     weights), free-form geometry (`cstype`, `curv`, `surf`, ...), and any unknown keyword;
+//   - a Kd channel of 1 or more: set to ObjOptions::max_reflectance (one warning per material);
+//   - an `mtllib` path that is not where it says: looked up relative to the OBJ's folder, then by
+//     its base name next to the OBJ, then in the current folder (the warning says which);
+//     further libraries of one `mtllib` statement that exist when another is missing;
+//   - `usemtl` of an undefined material, faces before any `usemtl`: the 'default' material;
+//   - a face that repeats an earlier face's corners on the same side (it would z-fight with it
+//     in a hemicube): dropped; back-to-back coincident faces (a two-sided sheet) are kept;
+//   - CR LF line ends, tabs, leading spaces, trailing comments, `\` line continuations,
+//     `o`/`g` after `usemtl` (the material carries on, as OBJ says), a material without Kd
+//     (reflectance 0), `map_Kd` (not read: Kd alone), `d` < 1 (surfaces stay opaque).
+// Errors (InputError): a file that cannot be read, no polygons, a coordinate or colour that is
+// not a finite number, a face index of 0 or outside the vertices defined so far, a face of
+// fewer than 3 vertices, a negative Kd or Ke, an MTL library found nowhere.
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -8,9 +25,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
-
-#include <tiny_obj_loader.h>
+#include <set>
 
 #include "hemirad/error.h"
 #include "hemirad/scene_io.h"
@@ -21,28 +36,95 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> read_lines(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, 0, std::string("cannot open file: ") + std::strerror(errno));
-    std::vector<std::string> lines;
-    std::string line;
-    while (std::getline(in, line)) {
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        lines.push_back(line);
-    }
-    return lines;
+/// "file:line", as messages name places.
+std::string where(const std::string& file, int line) {
+    return file + ":" + std::to_string(line);
 }
 
-std::vector<std::string> split_ws(const std::string& s) {
-    std::istringstream in(s);
-    std::vector<std::string> out;
-    std::string w;
-    while (in >> w) out.push_back(w);
+/// The statements of a text file: one per line, CR LF or CR line ends removed, a line ending in
+/// a backslash joined with the next (OBJ and MTL allow it). `line` is the first line's number.
+struct Statement {
+    std::string text;
+    int line = 0;
+};
+
+std::vector<Statement> read_statements(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, 0, std::string("cannot open file: ") + std::strerror(errno));
+    std::vector<Statement> out;
+    std::string line;
+    int number = 0;
+    bool continued = false;
+    while (std::getline(in, line)) {
+        ++number;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        // A lone CR also ends a line (old Mac files): split here.
+        std::size_t start = 0;
+        for (std::size_t cr; (cr = line.find('\r', start)) != std::string::npos; start = cr + 1) {
+            out.push_back({line.substr(start, cr - start), number});
+            continued = false;
+        }
+        std::string rest = line.substr(start);
+        const bool continues = !rest.empty() && rest.back() == '\\';
+        if (continues) rest.back() = ' ';
+        if (continued)
+            out.back().text += rest;
+        else
+            out.push_back({rest, number});
+        continued = continues;
+    }
+    if (in.bad())
+        throw InputError(path, 0, std::string("cannot read file: ") + std::strerror(errno));
     return out;
 }
 
-// Parses a whole token as a double; false if it is not a number at all. Accepts nan/inf
-// (std::strtod does), which the caller rejects with a message of its own.
+bool is_space(char c) {
+    return c == ' ' || c == '\t' || c == '\v' || c == '\f';
+}
+
+/// Whitespace-separated tokens; a token that starts with '#' ends the statement (a comment).
+std::vector<std::string> tokens(const std::string& s) {
+    std::vector<std::string> out;
+    std::size_t i = 0;
+    while (i < s.size()) {
+        while (i < s.size() && is_space(s[i])) ++i;
+        if (i >= s.size() || s[i] == '#') break;
+        const std::size_t b = i;
+        while (i < s.size() && !is_space(s[i])) ++i;
+        out.push_back(s.substr(b, i - b));
+    }
+    return out;
+}
+
+/// A name after its keyword (groups, materials): the remaining tokens joined by one space.
+std::string name_of(const std::vector<std::string>& w) {
+    std::string n;
+    for (std::size_t k = 1; k < w.size(); ++k) n += (k > 1 ? " " : "") + w[k];
+    return n;
+}
+
+/// `mtllib` file names: separated by whitespace, "\ " is a space inside a name.
+std::vector<std::string> library_names(const std::string& s, std::size_t from) {
+    std::vector<std::string> out;
+    std::string cur;
+    for (std::size_t i = from; i < s.size(); ++i) {
+        if (s[i] == '\\' && i + 1 < s.size() && is_space(s[i + 1])) {
+            cur += s[++i];
+        } else if (is_space(s[i])) {
+            if (!cur.empty()) out.push_back(cur);
+            cur.clear();
+        } else if (s[i] == '#' && cur.empty()) {
+            break;
+        } else {
+            cur += s[i];
+        }
+    }
+    if (!cur.empty()) out.push_back(cur);
+    return out;
+}
+
+/// Parses a whole token as a double; false if it is not a number at all. Accepts nan/inf
+/// (std::strtod does), which the callers reject with a message of their own.
 bool parse_double(const std::string& s, double& out) {
     const char* b = s.c_str();
     char* e = nullptr;
@@ -50,194 +132,530 @@ bool parse_double(const std::string& s, double& out) {
     return e != b && *e == '\0';
 }
 
-// Where each material's Kd/Ke were set, for messages about values out of range.
-struct MtlInfo {
-    std::string file;
-    std::map<std::string, int> kd_line, ke_line;
+/// Warnings collected while reading: one per kind, naming the first place and the count.
+class Notes {
+  public:
+    /// Records one occurrence of `kind` at `place`; `text` describes the first one.
+    void add(const std::string& kind, const std::string& place, const std::string& text) {
+        auto [it, fresh] = index_.try_emplace(kind, notes_.size());
+        if (fresh) notes_.push_back({place, text, 0});
+        ++notes_[it->second].count;
+    }
+    void append_to(std::vector<std::string>& warnings) const {
+        for (const Note& n : notes_)
+            warnings.push_back(n.place + ": " + n.text +
+                               (n.count > 1
+                                    ? " (" + std::to_string(n.count) + " times; the first is named)"
+                                    : ""));
+    }
+
+  private:
+    struct Note {
+        std::string place, text;
+        long count = 0;
+    };
+    std::map<std::string, std::size_t> index_;
+    std::vector<Note> notes_;
 };
 
-void scan_mtl(const std::string& path, MtlInfo& info) {
-    const std::vector<std::string> lines = read_lines(path);
-    std::string current;
-    for (std::size_t i = 0; i < lines.size(); ++i) {
-        const int line = int(i) + 1;
-        const std::vector<std::string> w = split_ws(lines[i]);
-        if (w.empty() || w[0][0] == '#') continue;
-        if (w[0] == "newmtl") {
-            current = w.size() > 1 ? w[1] : "";
-            continue;
-        }
-        if (w[0] == "Kd" || w[0] == "Ke") {
-            if (w.size() < 2)
-                throw InputError(path, line, w[0] + " needs 1 or 3 values");
-            for (std::size_t k = 1; k < w.size() && k < 4; ++k) {
-                double x;
-                if (!parse_double(w[k], x))
-                    throw InputError(path, line, "cannot parse " + w[0] + " value '" + w[k] + "'");
-                if (!std::isfinite(x))
-                    throw InputError(path, line, w[0] + " value " + w[k] + " is not finite");
-                if (w[0] == "Kd" && (x < 0 || x >= 1))
-                    throw InputError(path, line,
-                                     "diffuse reflectance Kd " + w[k] + " of material '" +
-                                         current + "' is outside [0, 1) (a surface can't reflect "
-                                                   "more than it receives)");
-                if (w[0] == "Ke" && x < 0)
-                    throw InputError(path, line, "emission Ke " + w[k] + " of material '" +
-                                                     current + "' is negative");
-            }
-            (w[0] == "Kd" ? info.kd_line : info.ke_line)[current] = line;
-        }
+// --- MTL ---------------------------------------------------------------------------------
+
+struct MtlMaterial {
+    Material m;
+    std::string place; ///< file:line of its newmtl
+};
+
+/// Reads "Kd r [g b]" / "Ke r [g b]": one value means grey (g = b = r).
+dvec3 parse_colour(const std::vector<std::string>& w, const std::string& file, int line) {
+    if (w.size() != 2 && w.size() < 4) throw InputError(file, line, w[0] + " needs 1 or 3 values");
+    dvec3 c(0.0);
+    for (int k = 0; k < 3; ++k) {
+        const std::string& t = w.size() == 2 ? w[1] : w[std::size_t(k) + 1];
+        double x;
+        if (!parse_double(t, x))
+            throw InputError(file, line, "cannot parse " + w[0] + " value '" + t + "'");
+        if (!std::isfinite(x))
+            throw InputError(file, line, w[0] + " value " + t + " is not finite");
+        c[k] = x;
     }
-    info.file = path;
+    return c;
 }
 
-// Checks every line tinyobjloader would read loosely: vertex coordinates and face indices.
-void scan_obj(const std::string& path, const std::vector<std::string>& lines,
-              std::vector<std::string>& mtl_files) {
-    long vertices = 0;
-    for (std::size_t i = 0; i < lines.size(); ++i) {
-        const int line = int(i) + 1;
-        const std::vector<std::string> w = split_ws(lines[i]);
-        if (w.empty() || w[0][0] == '#') continue;
+std::string colour_text(const std::vector<std::string>& w) {
+    std::string s = w[0];
+    for (std::size_t k = 1; k < w.size() && k < 4; ++k) s += " " + w[k];
+    return s;
+}
+
+void read_mtl(const std::string& path, const ObjOptions& options,
+              std::vector<MtlMaterial>& materials, std::map<std::string, std::size_t>& by_name,
+              Notes& notes) {
+    std::size_t current = materials.size(); // index of the material being defined; none yet
+    bool current_has_kd = false;
+    const auto close = [&] {
+        if (current < materials.size() && !current_has_kd && materials[current].m.Ke == dvec3(0.0))
+            notes.add("mtl no Kd", materials[current].place,
+                      "material '" + materials[current].m.name +
+                          "' has no Kd: reflectance 0 (black)");
+    };
+    for (const Statement& st : read_statements(path)) {
+        const std::vector<std::string> w = tokens(st.text);
+        if (w.empty()) continue;
         const std::string& key = w[0];
-        if (key == "v") {
-            if (w.size() < 4)
-                throw InputError(path, line, "vertex needs 3 coordinates: '" + lines[i] + "'");
-            for (int k = 1; k <= 3; ++k) {
-                double x;
-                if (!parse_double(w[k], x))
-                    throw InputError(path, line, "cannot parse vertex coordinate '" + w[k] + "'");
-                if (!std::isfinite(x))
-                    throw InputError(path, line,
-                                     "vertex coordinate " + w[k] + " is not a finite number");
+        const std::string place = where(path, st.line);
+        if (key == "newmtl") {
+            close();
+            const std::string name = name_of(w);
+            const auto [it, fresh] = by_name.try_emplace(name, materials.size());
+            if (fresh) {
+                materials.push_back({Material{name, dvec3(0.0), dvec3(0.0)}, place});
+            } else {
+                notes.add("mtl redefined " + name, place,
+                          "material '" + name + "' is defined again (first at " +
+                              materials[it->second].place + "): this definition is used");
+                materials[it->second] = {Material{name, dvec3(0.0), dvec3(0.0)}, place};
             }
-            ++vertices;
-        } else if (key == "f") {
-            if (w.size() < 4)
-                throw InputError(path, line,
-                                 "face needs at least 3 vertices: '" + lines[i] + "'");
-            for (std::size_t k = 1; k < w.size(); ++k) {
-                const std::string idx = w[k].substr(0, w[k].find('/'));
-                char* e = nullptr;
-                const long v = std::strtol(idx.c_str(), &e, 10);
-                if (idx.empty() || *e != '\0' || v == 0)
-                    throw InputError(path, line, "cannot parse face vertex index '" + w[k] + "'");
-                const long resolved = v > 0 ? v : vertices + 1 + v;
-                if (resolved < 1 || resolved > vertices)
-                    throw InputError(path, line,
-                                     "face vertex index " + idx + " refers to no vertex (" +
-                                         std::to_string(vertices) + " defined so far)");
+            current = it->second;
+            current_has_kd = false;
+            continue;
+        }
+        if (key == "Kd" || key == "Ke") {
+            const dvec3 c = parse_colour(w, path, st.line);
+            if (current >= materials.size()) {
+                notes.add("mtl before newmtl", place, key + " before any newmtl: ignored");
+                continue;
             }
-        } else if (key == "mtllib") {
-            for (std::size_t k = 1; k < w.size(); ++k) mtl_files.push_back(w[k]);
-        } else if (key == "vt" || key == "vn" || key == "g" || key == "o" || key == "usemtl" ||
-                   key == "s" || key == "l" || key == "p" || key == "vp") {
-            // Understood (texture coordinates, normals, lines and points are ignored).
-        } else {
-            throw InputError(path, line, "unknown OBJ statement '" + key + "'");
+            Material& m = materials[current].m;
+            const std::string name = m.name;
+            for (int k = 0; k < 3; ++k)
+                if (c[k] < 0)
+                    throw InputError(path, st.line,
+                                     (key == "Kd" ? "diffuse reflectance Kd " : "emission Ke ") +
+                                         num(c[k]) + " of material '" + name + "' is negative");
+            if (key == "Ke") {
+                m.Ke = c;
+                continue;
+            }
+            dvec3 rho = c;
+            bool clamped = false;
+            for (int k = 0; k < 3; ++k)
+                if (rho[k] >= 1) rho[k] = options.max_reflectance, clamped = true;
+            if (clamped)
+                notes.add("mtl Kd clamp " + name, place,
+                          colour_text(w) + " of material '" + name +
+                              "' is 1 or more (a surface can't reflect all the light it "
+                              "receives): reflectance " +
+                              num(options.max_reflectance) + " used there (--max-reflectance)");
+            m.rho = rho;
+            current_has_kd = true;
+            continue;
+        }
+        if (current >= materials.size()) continue;
+        if (key == "map_Kd") {
+            notes.add("mtl map_Kd", place,
+                      "textures (map_Kd) are not read: the reflectance of material '" +
+                          materials[current].m.name + "' is its Kd alone");
+            continue;
+        }
+        if (key == "d" && w.size() > 1) {
+            double d;
+            if (parse_double(w.back(), d) && d < 1)
+                notes.add("mtl transparency", place,
+                          "transparency (d " + w.back() + ") of material '" +
+                              materials[current].m.name +
+                              "' is not modelled: every surface is opaque");
+        }
+        // Everything else (Ka, Ks, Ns, Ni, illum, other maps, PBR extensions) describes what
+        // a diffuse radiosity solution does not use.
+    }
+    close();
+}
+
+/// Where `name` (from `mtllib` in `obj`) is: relative to the OBJ's folder, its base name next
+/// to the OBJ, then the current folder (as written, then by base name). Empty if nowhere;
+/// `looked` lists the places tried.
+fs::path find_library(const std::string& obj, const std::string& name, std::string& looked,
+                      std::string& how) {
+    const fs::path dir = fs::path(obj).parent_path();
+    const fs::path written(name);
+    const fs::path base = written.filename();
+    const std::vector<std::pair<fs::path, const char*>> candidates = {
+        {dir / written, ""},
+        {dir / base, "its base name next to the OBJ"},
+        {written, "the current folder"},
+        {base, "its base name in the current folder"},
+    };
+    std::set<fs::path> tried;
+    for (const auto& [p, what] : candidates) {
+        if (!tried.insert(p.lexically_normal()).second) continue;
+        looked += (looked.empty() ? "" : ", ") + p.string();
+        std::error_code ec;
+        if (fs::is_regular_file(p, ec)) {
+            how = what;
+            return p.lexically_normal();
         }
     }
+    return {};
+}
+
+// --- OBJ ---------------------------------------------------------------------------------
+
+struct Face {
+    std::vector<std::uint32_t> v; ///< 0-based vertex indices
+    int line = 0;
+    int material = -1;            ///< usemtl index into `usemtl_names`, -1 before any usemtl
+    std::uint32_t group_name = 0; ///< index into `group_names` (g/o in effect, may be "")
+};
+
+/// Parses one face corner "v", "v/t", "v//n" or "v/t/n"; returns the 0-based vertex index. A
+/// texture or normal index outside those defined is only noted: they are not used.
+std::uint32_t face_corner(const std::string& token, long vertices, long texcoords, long normals,
+                          const std::string& file, int line, Notes& notes) {
+    const long counts[3] = {vertices, texcoords, normals};
+    const char* what[3] = {"vertex", "texture coordinate", "normal"};
+    std::uint32_t result = 0;
+    std::size_t start = 0;
+    for (int part = 0; part < 3 && start <= token.size(); ++part) {
+        std::size_t slash = token.find('/', start);
+        if (slash == std::string::npos) slash = token.size();
+        const std::string idx = token.substr(start, slash - start);
+        start = slash + 1;
+        if (idx.empty() && part > 0) continue; // "v//n": no texture coordinate
+        char* e = nullptr;
+        const long i = std::strtol(idx.c_str(), &e, 10);
+        if (idx.empty() || *e != '\0' || i == 0)
+            throw InputError(file, line,
+                             "cannot parse face " + std::string(what[part]) + " index '" + token +
+                                 "'");
+        const long resolved = i > 0 ? i : counts[part] + 1 + i;
+        if (resolved < 1 || resolved > counts[part]) {
+            const std::string text = "face " + std::string(what[part]) + " index " + idx +
+                                     " refers to no " + what[part] + " (" +
+                                     std::to_string(counts[part]) + " defined so far)";
+            if (part == 0) throw InputError(file, line, text);
+            notes.add(std::string("index ") + what[part], where(file, line),
+                      text + ": ignored (texture coordinates and normals are not used)");
+        }
+        if (part == 0) result = std::uint32_t(resolved - 1);
+        if (slash == token.size()) break;
+    }
+    return result;
+}
+
+/// What an ignored statement is, for its warning.
+std::string ignored_reason(const std::string& key) {
+    if (key == "l" || key == "p") return "lines and points have no area";
+    if (key == "t") return "crease tags of subdivision surfaces";
+    if (key == "vw") return "skin weights";
+    if (key == "vp") return "parameter-space vertices of free-form geometry";
+    static const std::set<std::string> freeform = {
+        "cstype", "deg", "bmat", "step",  "curv",  "curv2", "surf", "parm", "trim", "hole", "scrv",
+        "sp",     "end", "con",  "ctech", "stech", "bsp",   "bzp",  "cdc",  "cdp",  "res"};
+    if (freeform.count(key)) return "free-form curves and surfaces are not supported";
+    static const std::set<std::string> display = {"mg",       "bevel",      "c_interp",
+                                                  "d_interp", "lod",        "usemap",
+                                                  "maplib",   "shadow_obj", "trace_obj"};
+    if (display.count(key)) return "a display or rendering attribute";
+    return "unknown statement";
+}
+
+/// The distinct corners of a face, sorted (the identity of coincident faces).
+std::vector<dvec3> corner_set(const std::vector<dvec3>& vertices, const Face& f) {
+    std::vector<dvec3> c;
+    for (std::uint32_t v : f.v) {
+        dvec3 p = vertices[v];
+        for (int i = 0; i < 3; ++i)
+            if (p[i] == 0) p[i] = 0.0; // -0 and +0 alike
+        c.push_back(p);
+    }
+    std::sort(c.begin(), c.end(), [](const dvec3& a, const dvec3& b) {
+        return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
+    });
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+    return c;
+}
+
+std::uint64_t hash_corners(const std::vector<dvec3>& c) {
+    std::uint64_t h = 1469598103934665603ull;
+    for (const dvec3& p : c)
+        for (int i = 0; i < 3; ++i) {
+            std::uint64_t b;
+            std::memcpy(&b, &p[i], sizeof b);
+            h = (h ^ b) * 1099511628211ull;
+        }
+    return h;
+}
+
+dvec3 newell_normal(const std::vector<dvec3>& c) {
+    dvec3 n(0.0);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        const dvec3& a = c[i];
+        const dvec3& b = c[(i + 1) % c.size()];
+        n += dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+    }
+    return n;
 }
 
 } // namespace
 
-Scene load_obj(const std::string& path) {
+Scene load_obj(const std::string& path, const ObjOptions& options) {
+    if (!(options.max_reflectance > 0 && options.max_reflectance < 1))
+        throw InputError("--max-reflectance " + num(options.max_reflectance) +
+                         " must be in (0, 1)");
     if (!fs::exists(path)) throw InputError(path, 0, "no such file");
     if (fs::is_directory(path)) throw InputError(path, 0, "is a directory, not an OBJ file");
-    const std::vector<std::string> lines = read_lines(path);
-    std::vector<std::string> mtl_names;
-    scan_obj(path, lines, mtl_names);
-    const fs::path dir = fs::path(path).parent_path();
-    MtlInfo mtl;
-    for (const std::string& name : mtl_names) {
-        const fs::path p = dir / name;
-        if (!fs::exists(p))
-            throw InputError(path, 0, "material library '" + name + "' not found (looked for " +
-                                          p.string() + ")");
-        scan_mtl(p.string(), mtl);
-    }
 
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = false;
-    config.vertex_color = false;
-    config.mtl_search_path = dir.string();
-    tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(path, config)) {
-        std::string err = reader.Error();
-        while (!err.empty() && err.back() == '\n') err.pop_back();
-        throw InputError(path, 0, "cannot parse: " + err);
+    Notes notes;
+    std::vector<dvec3> vertices;
+    long texcoords = 0, normals = 0;
+    std::vector<Face> faces;
+    std::vector<std::string> usemtl_names;  // as written, in order of first use
+    std::vector<std::string> usemtl_places; // file:line of the first usemtl of each
+    std::map<std::string, int> usemtl_index;
+    std::vector<std::string> group_names{""}; // g/o names in effect; "" = none given
+    std::map<std::string, std::uint32_t> group_name_index{{"", 0}};
+    std::vector<MtlMaterial> mtl;
+    std::map<std::string, std::size_t> mtl_by_name;
+    std::set<fs::path> libraries_read;
+    int material = -1;
+    std::uint32_t group = 0;
+    std::string ignored; // the keywords of ignored statements, for an empty scene's error
+
+    for (const Statement& st : read_statements(path)) {
+        const std::vector<std::string> w = tokens(st.text);
+        if (w.empty()) continue;
+        const std::string& key = w[0];
+        const int line = st.line;
+        if (key == "v") {
+            if (w.size() < 4)
+                throw InputError(path, line, "vertex needs 3 coordinates: '" + st.text + "'");
+            dvec3 p;
+            for (int k = 0; k < 3; ++k) {
+                const std::string& t = w[std::size_t(k) + 1];
+                if (!parse_double(t, p[k]))
+                    throw InputError(path, line, "cannot parse vertex coordinate '" + t + "'");
+                if (!std::isfinite(p[k]))
+                    throw InputError(path, line,
+                                     "vertex coordinate " + t + " is not a finite number");
+            }
+            vertices.push_back(p); // a 4th value (w) or vertex colours are not used
+        } else if (key == "vt") {
+            ++texcoords;
+        } else if (key == "vn") {
+            ++normals;
+        } else if (key == "f" || key == "fo") {
+            if (w.size() < 4)
+                throw InputError(path, line, "face needs at least 3 vertices: '" + st.text + "'");
+            Face f;
+            f.line = line;
+            f.material = material;
+            f.group_name = group;
+            for (std::size_t k = 1; k < w.size(); ++k)
+                f.v.push_back(face_corner(w[k], long(vertices.size()), texcoords, normals, path,
+                                          line, notes));
+            faces.push_back(std::move(f));
+        } else if (key == "g" || key == "o") {
+            const std::string name = name_of(w);
+            const auto [it, fresh] = group_name_index.try_emplace(name, group_names.size());
+            if (fresh) group_names.push_back(name);
+            group = it->second;
+        } else if (key == "usemtl") {
+            const std::string name = name_of(w);
+            const auto [it, fresh] = usemtl_index.try_emplace(name, int(usemtl_names.size()));
+            if (fresh) {
+                usemtl_names.push_back(name);
+                usemtl_places.push_back(where(path, line));
+            }
+            material = it->second;
+        } else if (key == "mtllib") {
+            const std::vector<std::string> names =
+                library_names(st.text, st.text.find("mtllib") + 6);
+            std::vector<std::pair<std::string, std::string>> missing; // name, places looked
+            bool found_any = false;
+            for (const std::string& name : names) {
+                std::string looked, how;
+                const fs::path p = find_library(path, name, looked, how);
+                if (p.empty()) {
+                    missing.emplace_back(name, looked);
+                    continue;
+                }
+                found_any = true;
+                if (!how.empty())
+                    notes.add("mtllib found " + name, where(path, line),
+                              "material library '" + name + "' is not at " +
+                                  (fs::path(path).parent_path() / name).string() + ": using " +
+                                  p.string() + " (" + how + ")");
+                if (libraries_read.insert(fs::weakly_canonical(p)).second)
+                    read_mtl(p.string(), options, mtl, mtl_by_name, notes);
+            }
+            for (const auto& [name, looked] : missing) {
+                if (!found_any)
+                    throw InputError(path, line,
+                                     "material library '" + name + "' not found (looked for " +
+                                         looked + ")");
+                notes.add("mtllib missing " + name, where(path, line),
+                          "material library '" + name + "' not found (looked for " + looked +
+                              "): skipped, the other libraries of this line were read");
+            }
+        } else if (key == "s") {
+            // Smoothing groups: shading normals, not used by a radiosity solution.
+        } else {
+            if (ignored.find("'" + key + "'") == std::string::npos)
+                ignored += (ignored.empty() ? "'" : ", '") + key + "'";
+            notes.add("statement " + key, where(path, line),
+                      "'" + key + "' statements ignored (" + ignored_reason(key) + ")");
+        }
     }
 
     Scene scene;
     scene.source = path;
-    // Materials: ours follow tinyobjloader's order; a last "default" one for faces without.
-    for (const tinyobj::material_t& m : reader.GetMaterials()) {
-        Material mat;
-        mat.name = m.name;
-        mat.rho = dvec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
-        mat.Ke = dvec3(m.emission[0], m.emission[1], m.emission[2]);
-        scene.materials.push_back(mat);
+    // Materials: every MTL material in the order read; 'default' last, only if a face uses it.
+    for (const MtlMaterial& m : mtl) scene.materials.push_back(m.m);
+    std::vector<int> material_of_usemtl(usemtl_names.size(), -1);
+    for (std::size_t i = 0; i < usemtl_names.size(); ++i) {
+        const auto it = mtl_by_name.find(usemtl_names[i]);
+        if (it != mtl_by_name.end()) material_of_usemtl[i] = int(it->second);
     }
-    const std::uint32_t default_material = std::uint32_t(scene.materials.size());
-    bool used_default = false;
-    scene.materials.push_back(Material{"default", dvec3(0.5), dvec3(0.0)});
+    std::uint32_t default_material = 0;
+    bool default_used = false;
+    const auto use_default = [&] {
+        if (!default_used) {
+            default_material = std::uint32_t(scene.materials.size());
+            scene.materials.push_back(Material{"default", dvec3(0.5), dvec3(0.0)});
+            default_used = true;
+        }
+        return default_material;
+    };
 
-    const tinyobj::attrib_t& attrib = reader.GetAttrib();
     std::map<std::string, std::uint32_t> group_index;
     const auto group_of = [&](const std::string& name) {
-        auto it = group_index.find(name);
-        if (it != group_index.end()) return it->second;
-        const auto g = std::uint32_t(scene.groups.size());
-        scene.groups.push_back(name);
-        group_index[name] = g;
-        return g;
+        const auto [it, fresh] = group_index.try_emplace(name, std::uint32_t(scene.groups.size()));
+        if (fresh) scene.groups.push_back(name);
+        return it->second;
     };
-    std::size_t degenerate = 0;
-    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-        std::size_t offset = 0;
-        for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
-            const int nv = shape.mesh.num_face_vertices[f];
-            std::vector<dvec3> corners;
-            for (int k = 0; k < nv; ++k) {
-                const int vi = shape.mesh.indices[offset + k].vertex_index;
-                corners.emplace_back(attrib.vertices[3 * vi], attrib.vertices[3 * vi + 1],
-                                     attrib.vertices[3 * vi + 2]);
-            }
-            offset += nv;
-            const int mid = shape.mesh.material_ids.empty() ? -1 : shape.mesh.material_ids[f];
-            const std::uint32_t material = mid >= 0 ? std::uint32_t(mid) : default_material;
-            used_default |= mid < 0;
-            const std::string gname = !shape.name.empty() ? shape.name
-                                      : mid >= 0         ? scene.materials[mid].name
-                                                         : "default";
-            const AddResult r = add_polygon(scene, corners, material, group_of(gname));
-            degenerate += r.degenerate;
-            if (r.split && nv == 4)
-                scene.warnings.push_back("face " + std::to_string(f + 1) + " of group '" + gname +
-                                         "' is a non-planar or concave quad: split into 2 "
-                                         "triangles");
-            else if (r.split)
-                scene.warnings.push_back("face " + std::to_string(f + 1) + " of group '" + gname +
-                                         "' has " + std::to_string(nv) +
-                                         " corners: fan-triangulated");
+
+    // Coincident faces, before any polygon is made: a face whose distinct corners are those of
+    // an earlier face is dropped if it faces the same side; back to back, both stay. Faces are
+    // grouped by a hash of their sorted corners (16 bytes a face), then compared exactly.
+    std::vector<std::uint8_t> dropped(faces.size(), 0);
+    long duplicates = 0;
+    std::string first_duplicate, first_sheet;
+    {
+        std::vector<std::pair<std::uint64_t, std::uint32_t>> keys;
+        keys.reserve(faces.size());
+        for (std::uint32_t i = 0; i < faces.size(); ++i) {
+            const std::vector<dvec3> c = corner_set(vertices, faces[i]);
+            if (c.size() >= 3) keys.emplace_back(hash_corners(c), i);
         }
+        std::sort(keys.begin(), keys.end());
+        std::size_t first_dup = faces.size(), first_sh = faces.size();
+        int dup_of = 0, sheet_of = 0;
+        std::vector<dvec3> corners;
+        const auto normal_of = [&](const Face& f) {
+            corners.clear();
+            for (std::uint32_t v : f.v) corners.push_back(vertices[v]);
+            return newell_normal(corners);
+        };
+        for (std::size_t b = 0, e; b < keys.size(); b = e) {
+            for (e = b + 1; e < keys.size() && keys[e].first == keys[b].first; ++e) {}
+            for (std::size_t j = b + 1; j < e; ++j) {
+                const Face& fj = faces[keys[j].second];
+                const std::vector<dvec3> cj = corner_set(vertices, fj);
+                const dvec3 nj = normal_of(fj);
+                if (!(glm::length(nj) > 0)) continue;
+                for (std::size_t k = b; k < j; ++k) {
+                    const Face& fk = faces[keys[k].second];
+                    if (dropped[keys[k].second] || corner_set(vertices, fk) != cj) continue;
+                    if (glm::dot(nj, normal_of(fk)) > 0) {
+                        dropped[keys[j].second] = 1;
+                        ++duplicates;
+                        if (keys[j].second < first_dup)
+                            first_dup = keys[j].second, dup_of = fk.line;
+                    } else if (keys[j].second < first_sh) {
+                        first_sh = keys[j].second, sheet_of = fk.line;
+                    }
+                    break;
+                }
+            }
+        }
+        if (duplicates)
+            first_duplicate = where(path, faces[first_dup].line) +
+                              ": face repeats the corners of the face at line " +
+                              std::to_string(dup_of) +
+                              " on the same side (the two would z-fight in a hemicube): dropped";
+        if (first_sh < faces.size())
+            first_sheet = where(path, faces[first_sh].line) +
+                          ": face lies back to back on the face at line " +
+                          std::to_string(sheet_of) + " (a two-sided sheet): both kept";
     }
+
+    long degenerate = 0, split_quads = 0, fans = 0;
+    std::string first_degenerate, first_split, first_fan;
+    std::vector<dvec3> corners;
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+        if (dropped[i]) continue;
+        const Face& f = faces[i];
+        corners.clear();
+        for (std::uint32_t v : f.v) corners.push_back(vertices[v]);
+        const std::string place = where(path, f.line);
+
+        std::uint32_t m;
+        std::string material_name;
+        if (f.material < 0) {
+            m = use_default();
+            material_name = "default";
+            notes.add("no usemtl", place,
+                      "faces without a material use 'default' (rho 0.5, no emission)");
+        } else if (material_of_usemtl[std::size_t(f.material)] < 0) {
+            m = use_default();
+            material_name = usemtl_names[std::size_t(f.material)];
+            notes.add("usemtl undefined " + material_name, usemtl_places[std::size_t(f.material)],
+                      "usemtl '" + material_name +
+                          "' names no material of the material libraries: its faces use "
+                          "'default' (rho 0.5, no emission)");
+        } else {
+            m = std::uint32_t(material_of_usemtl[std::size_t(f.material)]);
+            material_name = scene.materials[m].name;
+        }
+        const std::string& gname = group_names[f.group_name];
+        const std::uint32_t g = group_of(!gname.empty() ? gname : material_name);
+        const AddResult r = add_polygon(scene, corners, m, g);
+        if (r.degenerate && degenerate++ == 0) first_degenerate = place;
+        if (r.split && corners.size() == 4 && split_quads++ == 0)
+            first_split = place + ": face of group '" + scene.groups[g] +
+                          "' is a non-planar or concave quad: split into 2 triangles";
+        if (r.split && corners.size() > 4 && fans++ == 0)
+            first_fan = place + ": face of group '" + scene.groups[g] + "' has " +
+                        std::to_string(corners.size()) + " corners: fan-triangulated";
+    }
+    notes.append_to(scene.warnings);
+    if (scene.polygons.empty() && !ignored.empty())
+        throw InputError(path, 0,
+                         "the scene has no polygons (nothing to solve; ignored: " + ignored + ")");
+    const auto times = [](long n) {
+        return n > 1 ? " (" + std::to_string(n) + " faces like it; the first is named)"
+                     : std::string();
+    };
+    if (split_quads) scene.warnings.push_back(first_split + times(split_quads));
+    if (fans) scene.warnings.push_back(first_fan + times(fans));
+    if (duplicates) scene.warnings.push_back(first_duplicate + times(duplicates));
+    if (!first_sheet.empty()) scene.warnings.push_back(first_sheet);
     if (degenerate > 0)
-        scene.warnings.push_back("dropped " + std::to_string(degenerate) +
-                                 " degenerate polygon(s) (zero area or repeated vertices)");
-    if (used_default)
-        scene.warnings.push_back("faces without a material use 'default' (rho 0.5, no emission)");
+        scene.warnings.push_back(first_degenerate + ": dropped " + std::to_string(degenerate) +
+                                 " degenerate polygon(s) (zero area or repeated vertices; the "
+                                 "first is named)");
     finish_scene(scene, path);
     return scene;
 }
 
-Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin) {
+Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin,
+                 const ObjOptions& obj) {
     if (is_builtin(name_or_path)) return make_builtin(name_or_path, builtin);
     if (!fs::exists(name_or_path))
         throw InputError(name_or_path, 0,
-                         std::string("no such file, and not a built-in scene (") +
-                             builtin_names() + ")");
-    return load_obj(name_or_path);
+                         std::string("no such file, and not a built-in scene (") + builtin_names() +
+                             ")");
+    return load_obj(name_or_path, obj);
 }
 
 } // namespace hemirad

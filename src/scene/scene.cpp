@@ -128,16 +128,7 @@ void finish_scene(Scene& s, const std::string& origin) {
     const dvec3 power = s.emitted_power();
     if (!(power.x > 0 || power.y > 0 || power.z > 0))
         s.warnings.push_back("no surface emits light (every Ke is 0): the solution will be black");
-    if (s.cameras.empty()) {
-        // A default camera: look at the centre of the bounds from the -z side.
-        const Bounds b = s.bounds();
-        Camera c;
-        c.target = 0.5 * (b.lo + b.hi);
-        c.eye = c.target + dvec3(0, 0, -1.6 * b.diagonal());
-        c.up = dvec3(0, 1, 0);
-        c.fov_y_deg = 40;
-        s.cameras.push_back(c);
-    }
+    // No camera is made up here: default_camera() (render.h) frames a scene without one.
 }
 
 dvec3 Scene::emitted_power() const {

@@ -17,6 +17,7 @@ int cmd_formfactors(int argc, char** argv) {
     ho.max_depth = 0;
     ProviderOptions po;
     BuiltinOptions builtin;
+    ObjOptions obj;
     ArgParser args("hemirad formfactors", "hemirad formfactors SCENE --from GROUP [options]",
                    "Shoots from every leaf patch of every polygon of GROUP and reports the form\n"
                    "factor from GROUP to every group, F(GROUP -> G) = sum over shooters of\n"
@@ -36,12 +37,12 @@ int cmd_formfactors(int argc, char** argv) {
     args.option("--sr-points", &po.cpu.sr_points, "N", "sr: sample points per shooter");
     args.option("--gauss-order", &po.cpu.gauss_order, "N", "pdm: Gauss-Legendre order");
     args.flag("--json", &json, "print JSON");
-    add_scene_options(args, builtin);
+    add_scene_options(args, builtin, obj);
     if (!args.parse(argc, argv, 2)) return 0;
     if (from.empty()) throw InputError("--from GROUP is required");
     if (po.gpu.resolution == 0) po.gpu.resolution = 512;
 
-    const Scene scene = load_scene(scene_name, builtin);
+    const Scene scene = load_scene(scene_name, builtin, obj);
     const int g_from = scene.find_group(from);
     if (g_from < 0) {
         std::string names;

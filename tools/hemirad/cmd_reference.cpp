@@ -18,6 +18,7 @@ int cmd_reference(int argc, char** argv) {
     long seed = 1;
     ReferenceOptions ro;
     BuiltinOptions builtin;
+    ObjOptions obj;
     ArgParser args(
         "hemirad reference",
         "hemirad reference SCENE --probes IN.csv --probe-out OUT.csv [options]",
@@ -28,7 +29,7 @@ int cmd_reference(int argc, char** argv) {
         "normal. OUT.csv has the columns of 'hemirad solve --probe-out' and the standard\n"
         "errors of the means: x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group,sem_r,sem_g,sem_b.");
     args.positional("SCENE", &scene_name,
-                    "OBJ file or built-in scene (cornell, cube, furnace, sphere, room)");
+                    std::string("OBJ file or built-in scene (") + builtin_names() + ")");
     args.option("--probes", &probes_in, "IN.csv", "points x,y,z,nx,ny,nz to evaluate (required)");
     args.option("--probe-out", &probes_out, "OUT.csv",
                 "irradiance and its standard error at the points (required)");
@@ -39,7 +40,7 @@ int cmd_reference(int argc, char** argv) {
     args.option("--max-bounces", &ro.max_bounces, "K",
                 "count light reflected at most K times (0 = unlimited, unbiased)");
     args.flag("--quiet", &quiet, "print nothing but errors");
-    add_scene_options(args, builtin);
+    add_scene_options(args, builtin, obj);
     if (!args.parse(argc, argv, 2)) return 0;
     if (probes_in.empty()) throw InputError("--probes IN.csv is required");
     if (probes_out.empty()) throw InputError("--probe-out OUT.csv is required");
@@ -47,7 +48,7 @@ int cmd_reference(int argc, char** argv) {
     ro.seed = std::uint64_t(seed);
     validate_options(ro);
 
-    const Scene scene = load_scene(scene_name, builtin);
+    const Scene scene = load_scene(scene_name, builtin, obj);
     print_warnings(scene, quiet);
     const std::vector<Probe> probes = read_probes(probes_in);
     const unsigned threads =

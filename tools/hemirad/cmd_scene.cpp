@@ -10,38 +10,49 @@
 
 namespace hemirad::cli {
 
-void add_scene_options(ArgParser& args, BuiltinOptions& o) { add_builtin_scene_options(args, o); }
+void add_scene_options(ArgParser& args, BuiltinOptions& o, ObjOptions& obj) {
+    add_builtin_scene_options(args, o);
+    add_obj_scene_options(args, obj);
+}
 
 void print_warnings(const Scene& scene, bool quiet) { print_scene_warnings("hemirad", scene, quiet); }
 
 int cmd_scene(int argc, char** argv) {
-    std::string name;
+    std::string name, obj_out;
     bool json = false;
     BuiltinOptions builtin;
-    ArgParser args("hemirad scene", "hemirad scene SCENE [--json] [options]",
-                   "Loads a scene and prints what it holds.");
-    args.positional("SCENE", &name, "OBJ file or built-in scene (cornell, cube, furnace, sphere, room)");
+    ObjOptions obj;
+    ArgParser args("hemirad scene", "hemirad scene SCENE [--json] [--obj FILE.obj] [options]",
+                   "Loads a scene and prints what it holds; writes it as OBJ/MTL with --obj.");
+    args.positional("SCENE", &name, std::string("OBJ file or built-in scene (") + builtin_names() + ")");
     args.flag("--json", &json, "print JSON instead of text");
+    args.option("--obj", &obj_out, "FILE.obj",
+                "also write the scene as OBJ, with its materials in FILE.mtl beside it (how "
+                "the files in assets/ are made from the built-in scenes)");
     long points = 0;
     std::string points_out;
     args.option("--surface-points", &points, "N",
                 "write about N points spread over every polygon (x,y,z,nx,ny,nz; the input of "
                 "--probes) to --points-out");
     args.option("--points-out", &points_out, "FILE.csv", "where --surface-points go");
-    add_scene_options(args, builtin);
+    add_scene_options(args, builtin, obj);
     if (!args.parse(argc, argv, 2)) return 0;
     if ((points > 0) != !points_out.empty())
         throw InputError("--surface-points N and --points-out FILE.csv go together");
     if (points < 0 || points > 100'000'000)
         throw InputError("--surface-points " + std::to_string(points) + " must be in 1..1e8");
 
-    const Scene scene = load_scene(name, builtin);
+    const Scene scene = load_scene(name, builtin, obj);
     if (points > 0) {
         const std::vector<Probe> probes = surface_points(scene, std::size_t(points));
         write_text_file(points_out, probe_points_csv(probes));
         std::fprintf(stderr, "hemirad: wrote %zu surface points to %s\n", probes.size(),
                      points_out.c_str());
         return 0;
+    }
+    if (!obj_out.empty()) {
+        const std::string mtl = write_obj(scene, obj_out);
+        std::fprintf(stderr, "hemirad: wrote %s and %s\n", obj_out.c_str(), mtl.c_str());
     }
     const Bounds b = scene.bounds();
     const dvec3 power = scene.emitted_power();

@@ -60,12 +60,13 @@ int cmd_solve(int argc, char** argv) {
     bool quiet = false;
     SolverOptions so;
     BuiltinOptions builtin;
+    ObjOptions obj;
     OutputOptions out;
     ExportOptions exports;
     ArgParser args("hemirad solve", "hemirad solve SCENE [options]",
                    "Solves the radiosity of a scene by progressive shooting until the error\n"
                    "bound falls under the tolerance, then writes what was asked for.");
-    args.positional("SCENE", &scene_name, "OBJ file or built-in scene (cornell, cube, furnace, sphere, room)");
+    args.positional("SCENE", &scene_name, std::string("OBJ file or built-in scene (") + builtin_names() + ")");
     add_solver_options(args, so);
     args.section("output");
     args.option("--report", &report, "FILE.json", "write a JSON report");
@@ -75,7 +76,7 @@ int cmd_solve(int argc, char** argv) {
     add_output_options(args, out);
     add_export_options(args, exports);
     args.flag("--quiet", &quiet, "print nothing but errors");
-    add_scene_options(args, builtin);
+    add_scene_options(args, builtin, obj);
     if (!args.parse(argc, argv, 2)) return 0;
     if (!probes_in.empty() && probes_out.empty())
         throw InputError("--probes needs --probe-out OUT.csv");
@@ -87,7 +88,7 @@ int cmd_solve(int argc, char** argv) {
     // From here on SIGINT/SIGTERM end the solve at the end of a shot (or before the first),
     // with every requested output written.
     install_interrupt_handler();
-    const Scene scene = load_scene(scene_name, builtin);
+    const Scene scene = load_scene(scene_name, builtin, obj);
     print_warnings(scene, quiet);
     // Before the solver is built: a resumed run takes the saved options it was not given.
     const std::optional<SolutionFile> resumed =

@@ -14,8 +14,8 @@ int cmd_solve(int argc, char** argv);
 int cmd_formfactors(int argc, char** argv);
 int cmd_reference(int argc, char** argv);
 
-/// Options that select and shape a scene (built-in scenes' parameters).
-void add_scene_options(ArgParser& args, BuiltinOptions& o);
+/// Options that select and shape a scene (built-in scenes' parameters, OBJ/MTL reading).
+void add_scene_options(ArgParser& args, BuiltinOptions& o, ObjOptions& obj);
 
 /// Prints "hemirad: warning: ..." for each scene warning unless quiet.
 void print_warnings(const Scene& scene, bool quiet);

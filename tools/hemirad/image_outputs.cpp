@@ -57,6 +57,9 @@ Camera choose_camera(const std::string& text, const Scene& scene) {
         if (c.name == text) return c;
         names += (names.empty() ? "" : ", ") + c.name;
     }
+    // A scene without cameras has the framed view, named "default".
+    if (scene.cameras.empty() && text == "default") return default_camera(scene);
+    if (scene.cameras.empty()) names = "default";
     throw InputError("--camera '" + text + "': the scene has no camera of that name (" +
                      (names.empty() ? std::string("it has none") : "it has: " + names) +
                      "); give eye,target,up,fov for another view");
@@ -69,6 +72,7 @@ RenderOptions render_options(const ImageOutputOptions& o, Solver& solver) {
     r.shading = o.shading == "flat" ? RenderOptions::Shading::Flat
                                     : RenderOptions::Shading::Smooth;
     r.patch_edges = o.patch_edges;
+    r.two_sided = o.two_sided;
     r.ambient = o.ambient;
     if (o.ambient) r.ambient_irradiance = solver.ambient_irradiance();
     return r;
@@ -102,12 +106,16 @@ void add_image_options(ArgParser& args, ImageOutputOptions& o) {
                "sRGB); repeatable");
     args.option("--camera", &o.camera, "E,T,U,FOV|NAME",
                 "view: eye,target,up (x,y,z each) and vertical fov in degrees, or the name of "
-                "a camera of the scene (empty: the scene's first camera)");
+                "a camera of the scene (empty: the scene's first camera, or for a scene without "
+                "one a view framing its lit surfaces)");
     args.option("--width", &o.width, "W", "image width [pixels] (16..8192)");
     args.option("--height", &o.height, "H", "image height [pixels] (16..8192)");
     args.option("--shading", &o.shading, "MODE",
                 "smooth (area-weighted vertex averages, interpolated) or flat (per patch)");
     args.flag("--patch-edges", &o.patch_edges, "draw the leaf patch edges as dark lines");
+    args.flag("--two-sided", &o.two_sided,
+              "draw the backs of polygons (black) instead of culling them (by default a view "
+              "from outside a closed room sees into it)");
     args.flag("--ambient", &o.ambient,
               "add the ambient term rho*E_ambient to images (display only, for unconverged "
               "solutions)");

@@ -18,6 +18,7 @@ struct ImageOutputOptions {
     int width = 512, height = 512;  ///< [pixels] (16..8192)
     std::string shading = "smooth"; ///< smooth | flat
     bool patch_edges = false;       ///< overlay leaf patch edges
+    bool two_sided = false;         ///< draw the backs of polygons (black) instead of culling
     bool ambient = false;           ///< add rho * ambient irradiance (display only)
     bool exr_float = false;         ///< EXR with 32-bit floats (default: half)
     /// PNG exposure: "auto" (default: 95th luminance percentile -> 1), "auto+S" / "auto-S"

@@ -36,6 +36,7 @@ struct Options {
     int width = 256, height = 256;
     std::string camera;         ///< "ex,ey,ez,tx,ty,tz,ux,uy,uz,fov"; empty: scene default
     bool no_ambient = false, flat = false, exr = false, quiet = false;
+    bool two_sided = false;     ///< draw the backs of polygons (black) instead of culling
     double exposure = 0;        ///< [stops] on top of each frame's auto exposure
     int sheet_frames = 24;      ///< at most this many frames on the contact sheet
     int sheet_columns = 6;
@@ -218,12 +219,13 @@ int run(int argc, char** argv) {
     Options o;
     SolverOptions so;
     BuiltinOptions builtin;
+    ObjOptions obj;
     ArgParser args(kTool, "hemirad-preview SCENE --out DIR --every N [options]",
                    "Solves a scene by progressive shooting and writes a frame of the solution\n"
                    "every N shots (or T seconds) as DIR/frame_SHOT.png, then\n"
                    "DIR/contact_sheet.png, DIR/convergence.png and DIR/convergence.csv.");
     args.positional("SCENE", &o.scene,
-                    "OBJ file or built-in scene (cornell, cube, furnace, sphere, room)");
+                    std::string("OBJ file or built-in scene (") + builtin_names() + ")");
     args.section("frames");
     args.option("--out", &o.out, "DIR", "output directory (created if missing)");
     args.option("--every", &o.every, "N", "write a frame every N shots (0 = only by time)");
@@ -236,6 +238,8 @@ int run(int argc, char** argv) {
     args.flag("--no-ambient", &o.no_ambient,
               "render without the ambient term (unshot light then shows as black)");
     args.flag("--flat-shading", &o.flat, "one colour per patch instead of smooth shading");
+    args.flag("--two-sided", &o.two_sided,
+              "draw the backs of polygons (black) instead of culling them");
     args.option("--exposure", &o.exposure, "STOPS", "added to each frame's automatic exposure");
     args.flag("--exr", &o.exr, "also write each frame as linear EXR (frame_SHOT.exr)");
     args.option("--sheet-frames", &o.sheet_frames, "N",
@@ -246,6 +250,7 @@ int run(int argc, char** argv) {
     args.option("--backend", &so.provider.gpu.backend, "NAME", "GL backend: auto, egl, osmesa");
     args.option("--device", &so.provider.gpu.device, "N", "EGL device index (-1 = default)");
     add_builtin_scene_options(args, builtin);
+    add_obj_scene_options(args, obj);
     if (!args.parse(argc, argv)) return 0;
     validate(o, args);
     // Parse everything the user gave before any slow work.
@@ -255,7 +260,7 @@ int run(int argc, char** argv) {
     make_directory(o.out);
     const std::filesystem::path dir(o.out);
 
-    const Scene scene = load_scene(o.scene, builtin);
+    const Scene scene = load_scene(o.scene, builtin, obj);
     print_scene_warnings(kTool, scene, o.quiet);
     const Camera camera =
         user_camera ? *user_camera : default_camera(scene);
@@ -282,6 +287,7 @@ int run(int argc, char** argv) {
     ro.height = o.height;
     ro.ambient = !o.no_ambient;
     ro.shading = o.flat ? RenderOptions::Shading::Flat : RenderOptions::Shading::Smooth;
+    ro.two_sided = o.two_sided;
     ToneMap tm;
     tm.exposure = o.exposure;
 

@@ -42,6 +42,7 @@ const char* kHelp =
     "1 / 2  smooth / flat      G  patch edges (grid)\n"
     "C  false colour (legend)  L  last shooter  I  hemicube\n"
     "B  ambient term           + / -  exposure up/down (1/2 stop)\n"
+    "T  backs of polygons (black) / culled\n"
     "O  status line            H / F1  this help\n"
     "Esc / Q  quit";
 
@@ -56,6 +57,7 @@ struct Options {
     bool no_ambient = false, no_overlay = false, flat = false, edges = false, paused = false;
     bool false_colour = false, show_help = false, quiet = false;
     bool highlight = false, inset = false;
+    bool two_sided = false;      ///< draw the backs of polygons (black) instead of culling
     double exposure = 0;         ///< [stops]
 };
 
@@ -67,6 +69,7 @@ struct ViewState {
     bool paused = false, step_once = false, help = false, status = true;
     bool highlight = false;      ///< outline the last shot's shooter (key L)
     bool inset = false;          ///< the last hemicube's IDs and form factors (key I)
+    bool two_sided = false;      ///< draw the backs of polygons (key T); default: culled
     double exposure = 0;
     int drag_button = -1;        ///< GLFW mouse button held, -1 none
     double last_x = 0, last_y = 0;
@@ -98,6 +101,7 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
     case GLFW_KEY_B: s.ambient = !s.ambient; break;
     case GLFW_KEY_L: s.highlight = !s.highlight; break;
     case GLFW_KEY_I: s.inset = !s.inset; break;
+    case GLFW_KEY_T: s.two_sided = !s.two_sided; break;
     case GLFW_KEY_EQUAL:
     case GLFW_KEY_KP_ADD: s.exposure += 0.5; break;
     case GLFW_KEY_MINUS:
@@ -301,12 +305,13 @@ int run(int argc, char** argv) {
     Options o;
     SolverOptions so;
     BuiltinOptions builtin;
+    ObjOptions obj;
     ArgParser args(kTool, "hemirad-view SCENE [options]",
                    "Opens a window on a scene, solves it progressively between frames and\n"
                    "shows the solution as it converges. Press H in the window for the keys.\n"
                    "With --screenshot, --after-shots or --frames it saves a frame and exits.");
     args.positional("SCENE", &o.scene,
-                    "OBJ file or built-in scene (cornell, cube, furnace, sphere, room)");
+                    std::string("OBJ file or built-in scene (") + builtin_names() + ")");
     args.section("window");
     args.option("--width", &o.width, "W", "window width [pixels]");
     args.option("--height", &o.height, "H", "window height [pixels]");
@@ -316,6 +321,8 @@ int run(int argc, char** argv) {
     args.flag("--no-ambient", &o.no_ambient, "start with the ambient term off (key B)");
     args.flag("--flat-shading", &o.flat, "start with flat shading (key 2)");
     args.flag("--edges", &o.edges, "start with patch edges shown (key G)");
+    args.flag("--two-sided", &o.two_sided,
+              "start with the backs of polygons drawn (black) instead of culled (key T)");
     args.flag("--false-colour", &o.false_colour, "start with false-colour irradiance (key C)");
     args.option("--exposure", &o.exposure, "STOPS", "start exposure (keys + and -)");
     args.flag("--no-overlay", &o.no_overlay, "start with the status line hidden (key O)");
@@ -332,6 +339,7 @@ int run(int argc, char** argv) {
     args.flag("--quiet", &o.quiet, "print nothing but errors");
     add_solver_options(args, so);
     add_builtin_scene_options(args, builtin);
+    add_obj_scene_options(args, obj);
     if (!args.parse(argc, argv)) return 0;
     validate(o, args);
     std::optional<Camera> user_camera;
@@ -339,7 +347,7 @@ int run(int argc, char** argv) {
     const bool scripted = !o.screenshot.empty() || o.after_shots >= 0 || o.frames > 0;
 
     // Load the scene before opening a window: a bad scene is an error message, not a window.
-    const Scene scene = load_scene(o.scene, builtin);
+    const Scene scene = load_scene(o.scene, builtin, obj);
     print_scene_warnings(kTool, scene, o.quiet);
 
     glfwSetErrorCallback(on_glfw_error);
@@ -402,6 +410,7 @@ int run(int argc, char** argv) {
         s.help = o.show_help;
         s.highlight = o.highlight;
         s.inset = o.inset;
+        s.two_sided = o.two_sided;
         s.fb_width = fbw;
         s.fb_height = fbh;
         glfwSetWindowUserPointer(window, &s);
@@ -468,6 +477,7 @@ int run(int argc, char** argv) {
             RenderOptions ro;
             ro.shading = s.flat ? RenderOptions::Shading::Flat : RenderOptions::Shading::Smooth;
             ro.patch_edges = s.edges;
+            ro.two_sided = s.two_sided;
             ro.ambient = s.ambient;
             ro.ambient_irradiance = solver.ambient_irradiance();
             const Camera cam = s.camera.camera();
