@@ -42,9 +42,8 @@ const char* kHelp =
     "1 / 2  smooth / flat      G  patch edges (grid)\n"
     "C  false colour (legend)  L  last shooter  I  hemicube\n"
     "B  ambient term           + / -  exposure up/down (1/2 stop)\n"
-    "T  backs of polygons (black) / culled\n"
     "O  status line            H / F1  this help\n"
-    "Esc / Q  quit";
+    "T  backs of polygons      Esc / Q  quit";
 
 struct Options {
     std::string scene;
