@@ -14,6 +14,7 @@
 // Needs a GL context (Mesa llvmpipe here): failing to get one FAILS the test.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -23,6 +24,7 @@
 #include "hemirad/gather.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/readout.h"
+#include "hemirad/render.h"
 #include "hemirad/solver.h"
 #include "hemirad/validation_scenes.h"
 
@@ -221,4 +223,89 @@ TEST(Cie171, LitFloorObstructed_5_7) {
             F -= reference_ff(pt.p, pt.n, shadow);
         report("5.7", pt, M * F, probe(scene, h, pt));
     }
+}
+
+// A shadow edge inside leaves, in a rendered image (render.h, resolve_discontinuities): a
+// 0.2 m square source 1 m over a black floor, and a plate 0.1 m over the floor, so that its
+// shadow's penumbra (0.02 m) is narrower than a leaf (0.03 m). The floor's irradiance image
+// is compared pixel by pixel, in a window across the shadow's edge, with the exact value:
+// the source less the plate's central projection from the point onto the source's plane,
+// E = M [F(p -> source) - F(p -> source ∩ projection)], by Howell's closed forms. Errors are
+// relative to the unshadowed value at the pixel. Measured: leaves interpolated, rms 0.121 and
+// max 0.29 (a soft block two leaves wide); with the pass, rms 0.018 and max 0.043 (what is
+// left: the solver's own leaf values next to the edge, and steps of one fine emitter cell).
+TEST(Discontinuities, ShadowEdgeWithinALeaf) {
+    ASSERT_TRUE(ensure_context());
+    constexpr double M = 1000.0, kPlate = 0.1;
+    const HorizontalRect source{0.9, 1.1, 0.9, 1.1, 1.0}, plate{0.7, 1.0, 0.7, 1.3, kPlate};
+    Scene scene;
+    scene.materials = {Material{"black", dvec3(0.0), dvec3(0.0)},
+                       Material{"light", dvec3(0.0), dvec3(M / std::numbers::pi)}};
+    scene.groups = {"floor", "light", "plate"};
+    const auto rect = [&](const HorizontalRect& r, bool up, std::uint32_t m, std::uint32_t g) {
+        std::vector<dvec3> c = {{r.x0, r.y, r.z0}, {r.x0, r.y, r.z1}, {r.x1, r.y, r.z1},
+                                {r.x1, r.y, r.z0}};
+        if (!up) std::reverse(c.begin(), c.end());
+        add_polygon(scene, c, m, g);
+    };
+    rect({0, 2, 0, 2, 0}, true, 0, 0);
+    rect(source, false, 1, 1);
+    rect(plate, true, 0, 2);
+    finish_scene(scene, "test:shadow-edge");
+    Solver s(scene, gpu_options());
+    while (s.step()) {}
+    const Hierarchy& h = s.solution();
+
+    Camera cam;
+    cam.eye = {1.3, 0.8, 1.0};
+    cam.target = {1.0, 0.0, 1.0};
+    cam.up = {0, 0, 1};
+    cam.fov_y_deg = 30;
+    RenderOptions o;
+    o.width = o.height = 128;
+    o.quantity = RenderOptions::Quantity::Irradiance;
+    SolutionRenderer renderer(scene);
+    const ImageRGB plain = renderer.render(h, cam, o);
+    ImageRGB sharp = plain;
+    const DiscontinuityStats d = resolve_discontinuities(sharp, h, cam, o);
+    EXPECT_GT(d.pixels, 0u);
+
+    const dvec3 f = glm::normalize(cam.target - cam.eye);
+    const dvec3 r = glm::normalize(glm::cross(f, cam.up)), u = glm::cross(r, f);
+    const double ty = std::tan(0.5 * glm::radians(cam.fov_y_deg));
+    double sum_plain = 0, sum_sharp = 0, max_plain = 0, max_sharp = 0;
+    int n = 0;
+    for (int y = 0; y < o.height; ++y)
+        for (int x = 0; x < o.width; ++x) {
+            const dvec3 dir = f + (2.0 * (x + 0.5) / o.width - 1.0) * ty * r +
+                              (1.0 - 2.0 * (y + 0.5) / o.height) * ty * u;
+            const dvec3 p = cam.eye - cam.eye.y / dir.y * dir; // on the floor, y = 0
+            const dvec3 at_plate = cam.eye + (cam.eye.y - kPlate) / -dir.y * dir;
+            if (at_plate.x >= plate.x0 && at_plate.x <= plate.x1 && at_plate.z >= plate.z0 &&
+                at_plate.z <= plate.z1)
+                continue; // the camera sees the plate here
+            if (p.x < 0.9 || p.x > 1.1 || p.z < 0.8 || p.z > 1.2) continue;
+            const double k = 1.0 / kPlate; // projection from p through the plate to y = 1
+            HorizontalRect shadow{p.x + k * (plate.x0 - p.x), p.x + k * (plate.x1 - p.x),
+                                  p.z + k * (plate.z0 - p.z), p.z + k * (plate.z1 - p.z), 1.0};
+            shadow.x0 = std::max(shadow.x0, source.x0), shadow.x1 = std::min(shadow.x1, source.x1);
+            shadow.z0 = std::max(shadow.z0, source.z0), shadow.z1 = std::min(shadow.z1, source.z1);
+            const double open = closed_form_rect(p, kUp, source);
+            double F = open;
+            if (shadow.x0 < shadow.x1 && shadow.z0 < shadow.z1)
+                F -= closed_form_rect(p, kUp, shadow);
+            const double e_plain = std::abs(plain.at(x, y)[0] - M * F) / (M * open);
+            const double e_sharp = std::abs(sharp.at(x, y)[0] - M * F) / (M * open);
+            sum_plain += e_plain * e_plain, sum_sharp += e_sharp * e_sharp;
+            max_plain = std::max(max_plain, e_plain), max_sharp = std::max(max_sharp, e_sharp);
+            ++n;
+        }
+    ASSERT_GT(n, 500);
+    const double rms_plain = std::sqrt(sum_plain / n), rms_sharp = std::sqrt(sum_sharp / n);
+    std::printf("shadow edge, %d pixels: leaves rms %.4f max %.3f; at the point rms %.4f max "
+                "%.3f (%zu leaves flagged)\n",
+                n, rms_plain, max_plain, rms_sharp, max_sharp, d.leaves);
+    EXPECT_LT(rms_sharp, 0.03);
+    EXPECT_LT(max_sharp, 0.08);
+    EXPECT_LT(rms_sharp, 0.25 * rms_plain);
 }

@@ -43,6 +43,14 @@ struct GatherOptions {
     int rays = 1024;             ///< indirect: cosine rays per point, 16..65536 (typical 256-4096)
     double emitter_angle = 0.1;  ///< direct: widest emitter cell seen from the point [rad], (0, 1]
     std::uint64_t seed = 1;      ///< generator seed (reproducible)
+    /// Direct light: shadow rays to jittered points of the emitter cells (unbiased on average,
+    /// for points) or to their centres (deterministic and smooth from point to point, for
+    /// images, at the price of steps of one fine cell in a penumbra).
+    bool jitter = true;
+    /// Direct light: test the coarse cells first and take the exact form factor when all are
+    /// visible (fast, for points); off: always sum the fine cells (no step where one coarse
+    /// ray first meets an occluder: smooth penumbrae in images).
+    bool coarse_test = true;
     int threads = 0;             ///< worker threads; 0 = all cores
 };
 
@@ -72,6 +80,8 @@ class FinalGather {
 
     /// One point; `index` selects its random stream.
     GatherValue at(const GatherPoint& q, std::uint64_t index) const;
+    /// The direct part alone (emitters with their area visibility sampled), as in at().
+    dvec3 direct_at(const GatherPoint& q, std::uint64_t index) const;
     /// Many points, on options.threads threads; point k uses index k.
     std::vector<GatherValue> at(const std::vector<GatherPoint>& points) const;
 

@@ -1,6 +1,7 @@
 // Reading a solution: irradiance at points (probes) and per surface group.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 
 #include "hemirad/hierarchy.h"
@@ -29,6 +30,25 @@ std::optional<SurfacePoint> find_surface(const Scene& scene, const dvec3& point,
 /// the leaf patches around it (quads; triangles take the leaf that holds the point). The
 /// hierarchy should be push-pulled (Solver::solution()).
 dvec3 irradiance_at(const Hierarchy& h, const SurfacePoint& sp);
+
+/// The same interpolation of any per-leaf field: `leaf(index)` gives the value of the leaf
+/// patch `index` of sp.polygon at its leaf level.
+template <class LeafValue>
+dvec3 interpolate_leaves(const Hierarchy& h, const SurfacePoint& sp, LeafValue leaf) {
+    const Polygon& poly = h.scene().polygons[sp.polygon];
+    const std::uint32_t level = std::uint32_t(h.depth(sp.polygon));
+    if (poly.is_triangle()) return leaf(patch_at(poly, level, sp.u, sp.v));
+    const int n = 1 << level;
+    // Leaf centres sit at (i + 0.5)/n; interpolate between the four around (u,v).
+    const double x = std::clamp(sp.u * n - 0.5, 0.0, double(n - 1));
+    const double y = std::clamp(sp.v * n - 0.5, 0.0, double(n - 1));
+    const int x0 = std::min(int(x), n - 1), y0 = std::min(int(y), n - 1);
+    const int x1 = std::min(x0 + 1, n - 1), y1 = std::min(y0 + 1, n - 1);
+    const double fx = x - x0, fy = y - y0;
+    const auto at = [&](int i, int j) { return dvec3(leaf(std::uint32_t(j * n + i))); };
+    return (1 - fx) * (1 - fy) * at(x0, y0) + fx * (1 - fy) * at(x1, y0) +
+           (1 - fx) * fy * at(x0, y1) + fx * fy * at(x1, y1);
+}
 
 /// Leaf-level irradiance statistics of one surface group, per channel.
 struct GroupIrradiance {

@@ -50,6 +50,26 @@ struct RenderOptions {
     dvec3 highlight_colour{1.0, 0.1, 0.9}; ///< display RGB in [0,1] (default magenta)
 };
 
+/// Shadow edges inside leaves, in a rendered image (discontinuities.cpp). A leaf whose
+/// irradiance differs from a neighbour's (on the same polygon) by more than 20 % of the larger
+/// (and by more than 1 % of the scene's 95th-percentile leaf) straddles a discontinuity: a
+/// shadow edge, a contact line, a light's footprint; interpolated, it shows a leaf-sized soft
+/// block. Every pixel whose camera ray lands on the front of such a leaf gets the detail the
+/// leaves cannot hold: rho * (D(x) - D~(x)), with D(x) the direct light at the point itself
+/// (the final gather's: emitter cells and shadow rays, gather.h) and D~(x) the same leaf-centre
+/// interpolation (readout.h, interpolate_leaves) of the direct light at the leaf centres, so
+/// that where the direct light is smooth nothing changes. With Quantity::Irradiance the
+/// detail is added without rho. `image` must be render()'s output for this camera and options
+/// (row 0 the top); flat shading and patch edges (views of the leaves themselves) are left
+/// as they are.
+struct DiscontinuityStats {
+    std::size_t leaves = 0;  ///< leaves flagged as straddling a discontinuity
+    std::size_t pixels = 0;  ///< pixels re-evaluated
+    double seconds = 0;
+};
+DiscontinuityStats resolve_discontinuities(ImageRGB& image, const Hierarchy& h,
+                                           const Camera& camera, const RenderOptions& options);
+
 /// Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fov" (fov: vertical, degrees, in (0, 180)). Throws
 /// InputError naming the bad value (wrong count, not a number, eye == target, up parallel to
 /// the view direction, fov out of range).

@@ -65,15 +65,21 @@ dvec3 FinalGather::direct(const dvec3& x, const dvec3& n, std::uint32_t self,
                                      kMaxDepth - kPenumbraSplit);
         const std::uint32_t count = 1u << (2 * level);
         const auto visible = [&](const PatchGeometry& g) {
-            const double pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-            const dvec3 y = area_point(g.corners.data(), g.count, pick, u1, u2);
+            dvec3 y = g.centre;
+            if (options_.jitter) {
+                const double pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+                y = area_point(g.corners.data(), g.count, pick, u1, u2);
+            }
             return !bvh_->occluded(x, y, self, e);
         };
-        std::uint32_t seen = 0;
-        for (std::uint32_t c = 0; c < count; ++c)
-            seen += visible(patch_geometry(P, std::uint32_t(level), c)) ? 1 : 0;
+        std::uint32_t seen = 1; // without the coarse test: "some visible", go fine
+        if (options_.coarse_test) {
+            seen = 0;
+            for (std::uint32_t c = 0; c < count; ++c)
+                seen += visible(patch_geometry(P, std::uint32_t(level), c)) ? 1 : 0;
+        }
         double f = 0;
-        if (seen == count) {
+        if (seen == count && options_.coarse_test) {
             f = F;
         } else if (seen > 0) {
             // Penumbra: sum over fine cells of F(dx -> cell) * (one jittered ray's visibility).
@@ -157,6 +163,13 @@ GatherValue FinalGather::at(const GatherPoint& q, std::uint64_t index) const {
     v.direct = direct(q.position, n, self, seed);
     v.indirect = indirect(q.position, n, self, splitmix64(seed + 1));
     return v;
+}
+
+dvec3 FinalGather::direct_at(const GatherPoint& q, std::uint64_t index) const {
+    const double len = glm::length(q.normal);
+    if (!(len > 0)) return dvec3(0.0);
+    const std::uint32_t self = q.polygon == GatherPoint::kNoSurface ? kNoPolygon : q.polygon;
+    return direct(q.position, q.normal / len, self, splitmix64(options_.seed ^ splitmix64(index)));
 }
 
 std::vector<GatherValue> FinalGather::at(const std::vector<GatherPoint>& points) const {

@@ -57,22 +57,10 @@ std::optional<SurfacePoint> find_surface(const Scene& scene, const dvec3& point,
 }
 
 dvec3 irradiance_at(const Hierarchy& h, const SurfacePoint& sp) {
-    const Polygon& poly = h.scene().polygons[sp.polygon];
     const std::uint32_t level = std::uint32_t(h.depth(sp.polygon));
-    if (poly.is_triangle())
-        return h.irradiance({sp.polygon, level, patch_at(poly, level, sp.u, sp.v)});
-    const int n = 1 << level;
-    // Leaf centres sit at (i + 0.5)/n; interpolate between the four around (u,v).
-    const double x = std::clamp(sp.u * n - 0.5, 0.0, double(n - 1));
-    const double y = std::clamp(sp.v * n - 0.5, 0.0, double(n - 1));
-    const int x0 = std::min(int(x), n - 1), y0 = std::min(int(y), n - 1);
-    const int x1 = std::min(x0 + 1, n - 1), y1 = std::min(y0 + 1, n - 1);
-    const double fx = x - x0, fy = y - y0;
-    const auto at = [&](int i, int j) {
-        return h.irradiance({sp.polygon, level, std::uint32_t(j * n + i)});
-    };
-    return (1 - fx) * (1 - fy) * at(x0, y0) + fx * (1 - fy) * at(x1, y0) +
-           (1 - fx) * fy * at(x0, y1) + fx * fy * at(x1, y1);
+    return interpolate_leaves(h, sp, [&](std::uint32_t index) {
+        return h.irradiance({sp.polygon, level, index});
+    });
 }
 
 GroupIrradiance group_irradiance(const Hierarchy& h, std::uint32_t group) {

@@ -30,7 +30,8 @@ cd "$work"
 # Scripted screenshot: no ambient term and no overlay, as `hemirad solve -o` renders.
 xvfb-run -a "$view" cornell --screenshot shot.png --after-shots 10 --width 128 --height 96 \
     --no-ambient --no-overlay --quiet
-"$hemirad" solve cornell --max-shots 10 -o ref.png --width 128 --height 96 --quiet
+"$hemirad" solve cornell --max-shots 10 -o ref.png --width 128 --height 96 --quiet \
+    --discontinuities off # the viewer draws the leaves only
 # The same frame with the status line (bottom) and the help panel (top left).
 xvfb-run -a "$view" cornell --screenshot overlay.png --after-shots 10 --width 320 --height 240 \
     --no-ambient --show-help --quiet

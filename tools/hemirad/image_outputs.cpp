@@ -113,6 +113,9 @@ void add_image_options(ArgParser& args, ImageOutputOptions& o) {
     args.option("--shading", &o.shading, "MODE",
                 "smooth (area-weighted vertex averages, interpolated) or flat (per patch)");
     args.flag("--patch-edges", &o.patch_edges, "draw the leaf patch edges as dark lines");
+    args.option("--discontinuities", &o.discontinuities, "on|off",
+                "re-evaluate the pixels of leaves that straddle a shadow edge or contact line "
+                "at the point itself (direct light sampled there; off: interpolate the leaves)");
     args.flag("--two-sided", &o.two_sided,
               "draw the backs of polygons (black) instead of culling them (by default a view "
               "from outside a closed room sees into it)");
@@ -131,6 +134,8 @@ void add_image_options(ArgParser& args, ImageOutputOptions& o) {
 }
 
 void validate_image_options(const ImageOutputOptions& o) {
+    if (o.discontinuities != "on" && o.discontinuities != "off")
+        throw InputError("--discontinuities '" + o.discontinuities + "' must be on or off");
     for (const std::string& f : o.files) {
         const std::string e = extension_of(f);
         if (e != ".exr" && e != ".png")
@@ -173,7 +178,15 @@ void write_image_outputs(const ImageOutputOptions& o, Solver& solver, bool quiet
     }
     const char* shading = o.shading.c_str();
     if (!o.files.empty()) {
-        const ImageRGB image = renderer.render(h, camera, ro);
+        ImageRGB image = renderer.render(h, camera, ro);
+        if (o.discontinuities == "on") {
+            const DiscontinuityStats d = resolve_discontinuities(image, h, camera, ro);
+            if (!quiet && d.pixels > 0)
+                std::fprintf(stderr,
+                             "hemirad: %zu leaves straddle a shadow edge; %zu pixels evaluated "
+                             "at the point (%.2f s)\n",
+                             d.leaves, d.pixels, d.seconds);
+        }
         const auto [automatic, stops] = parse_exposure(o.exposure);
         for (const std::string& f : o.files) {
             if (extension_of(f) == ".exr") {
@@ -205,7 +218,8 @@ void write_image_outputs(const ImageOutputOptions& o, Solver& solver, bool quiet
         fo.quantity = RenderOptions::Quantity::Irradiance;
         fo.patch_edges = false; // the edges would change the values shown
         fo.background = dvec3(-1.0); // marks "no surface" for false_colour_view
-        const ImageRGB E = renderer.render(h, camera, fo);
+        ImageRGB E = renderer.render(h, camera, fo);
+        if (o.discontinuities == "on") resolve_discontinuities(E, h, camera, fo);
         double lo = 0, hi = 0;
         const Image8 view =
             false_colour_view(E, o.false_colour_scale == "log", o.lux, &lo, &hi);

@@ -19,6 +19,7 @@ struct ImageOutputOptions {
     std::string shading = "smooth"; ///< smooth | flat
     bool patch_edges = false;       ///< overlay leaf patch edges
     bool two_sided = false;         ///< draw the backs of polygons (black) instead of culling
+    std::string discontinuities = "on"; ///< --discontinuities on|off (render.h)
     bool ambient = false;           ///< add rho * ambient irradiance (display only)
     bool exr_float = false;         ///< EXR with 32-bit floats (default: half)
     /// PNG exposure: "auto" (default: 95th luminance percentile -> 1), "auto+S" / "auto-S"
