@@ -27,6 +27,11 @@
 // square root of their total area. A polygon corner at parameter (pu, pv) gets the texture
 // coordinate s = (x0 + pu n)/W, t = 1 - (y0 + pv n)/H (W x H atlas; image row 0 is the top,
 // OBJ's t = 0 is the bottom).
+// Detail at discontinuities (default; render/discontinuity_field.h): a quad whose leaves
+// straddle a shadow edge gets a chart of 4n x 4n texels, 4 x 4 per leaf; a texel of a flagged
+// leaf holds B_leaf + rho (D(x) - D_leaf), the leaf's radiosity plus the direct light's
+// detail at the texel centre x (D_leaf the leaf's mean direct light), so that the texels of a
+// leaf still average about its B and the shadow edge is drawn at a quarter of a leaf.
 #pragma once
 
 #include <array>
@@ -59,7 +64,7 @@ inline constexpr int kLightmapPadding = 2; ///< border texels around each chart
 struct LightmapChart {
     std::uint32_t polygon = 0;
     int x0 = 0, y0 = 0; ///< atlas texel of the chart's cell (0, 0), inside the border
-    int n = 1;          ///< chart side in texels (leaves per side)
+    int n = 1;          ///< chart side in texels (leaves per side, times 4 with detail)
 };
 
 struct Lightmap {
@@ -71,13 +76,18 @@ struct Lightmap {
 
 /// Builds the lightmap of surface group `group` (see the layout above); `stem` names the
 /// files the OBJ refers to (stem.mtl, stem.exr).
-Lightmap build_lightmap(const Hierarchy& h, std::uint32_t group, const std::string& stem);
+/// With `detail` (discontinuities on), charts of polygons with flagged leaves are refined.
+class DiscontinuityField;
+Lightmap build_lightmap(const Hierarchy& h, std::uint32_t group, const std::string& stem,
+                        const DiscontinuityField* detail = nullptr);
 
 /// The file stem for a group name (unsafe characters replaced by '_'; "group" if empty).
 std::string lightmap_stem(const std::string& group);
 
 /// Writes DIR/G.exr, DIR/G.obj and DIR/G.mtl for every surface group that has polygons,
 /// creating DIR if needed. Returns the paths written. Throws RuntimeError naming the path.
-std::vector<std::string> export_lightmaps(const std::string& dir, const Hierarchy& h);
+/// `discontinuities`: refine the charts that straddle shadow edges (see the layout above).
+std::vector<std::string> export_lightmaps(const std::string& dir, const Hierarchy& h,
+                                          bool discontinuities = true);
 
 } // namespace hemirad

@@ -3,11 +3,13 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <sstream>
 
 #include "hemirad/error.h"
 #include "hemirad/export.h"
 #include "output/atomic_file.h"
+#include "render/discontinuity_field.h"
 
 namespace hemirad {
 
@@ -60,13 +62,51 @@ std::string lightmap_stem(const std::string& group) {
     return s;
 }
 
-Lightmap build_lightmap(const Hierarchy& h, std::uint32_t group, const std::string& stem) {
+namespace {
+
+// Texels per leaf side of polygon p's chart: 4 for a quad with a flagged leaf (with detail).
+int texels_per_leaf(const Hierarchy& h, std::uint32_t p, const DiscontinuityField* detail) {
+    const Polygon& poly = h.scene().polygons[p];
+    if (!detail || poly.is_triangle()) return 1;
+    const std::uint32_t level = std::uint32_t(h.depth(p));
+    for (std::uint32_t i = 0; i < (1u << (2 * level)); ++i)
+        if (detail->flagged(p, i)) return 4;
+    return 1;
+}
+
+// A refined chart (quads): k x k texels per leaf, the flagged leaves' texels with detail.
+std::vector<glm::vec3> refined_texels(const Hierarchy& h, std::uint32_t p, int k,
+                                      const DiscontinuityField& detail) {
+    const Polygon& poly = h.scene().polygons[p];
+    const Material& m = h.scene().material_of(poly);
+    const std::uint32_t level = std::uint32_t(h.depth(p));
+    const int leaves = 1 << level, n = leaves * k;
+    std::vector<glm::vec3> t(std::size_t(n) * n);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const std::uint32_t leaf = std::uint32_t((j / k) * leaves + i / k);
+            dvec3 B = h.radiosity({p, level, leaf});
+            const double u = (i + 0.5) / n, v = (j + 0.5) / n;
+            dvec3 d;
+            if (detail.detail(p, u, v, polygon_point(poly, u, v), std::uint64_t(j) * n + i,
+                              DiscontinuityField::Reconstruction::Leaf, d))
+                B = glm::max(B + m.rho * d, m.exitance());
+            t[std::size_t(j) * n + i] = glm::vec3(B);
+        }
+    return t;
+}
+
+} // namespace
+
+Lightmap build_lightmap(const Hierarchy& h, std::uint32_t group, const std::string& stem,
+                        const DiscontinuityField* detail) {
     const Scene& scene = h.scene();
     constexpr int pad = kLightmapPadding;
     Lightmap lm;
     lm.group = scene.groups[group];
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
-        if (scene.polygons[p].group == group) lm.charts.push_back({p, 0, 0, 1 << h.depth(p)});
+        if (scene.polygons[p].group == group)
+            lm.charts.push_back({p, 0, 0, (1 << h.depth(p)) * texels_per_leaf(h, p, detail)});
     if (lm.charts.empty()) return lm;
 
     // Shelf packing, largest first, into a width of about sqrt(total area).
@@ -97,7 +137,9 @@ Lightmap build_lightmap(const Hierarchy& h, std::uint32_t group, const std::stri
 
     // Texels, with a border of `pad` texels filled by clamp-to-edge dilation.
     for (const LightmapChart& c : lm.charts) {
-        const std::vector<glm::vec3> t = chart_texels(h, c.polygon);
+        const int k = c.n >> h.depth(c.polygon);
+        const std::vector<glm::vec3> t =
+            k > 1 ? refined_texels(h, c.polygon, k, *detail) : chart_texels(h, c.polygon);
         for (int j = -pad; j < c.n + pad; ++j)
             for (int i = -pad; i < c.n + pad; ++i) {
                 const int ci = std::clamp(i, 0, c.n - 1), cj = std::clamp(j, 0, c.n - 1);
@@ -137,7 +179,10 @@ Lightmap build_lightmap(const Hierarchy& h, std::uint32_t group, const std::stri
     return lm;
 }
 
-std::vector<std::string> export_lightmaps(const std::string& dir, const Hierarchy& h) {
+std::vector<std::string> export_lightmaps(const std::string& dir, const Hierarchy& h,
+                                          bool discontinuities) {
+    std::unique_ptr<DiscontinuityField> detail;
+    if (discontinuities) detail = std::make_unique<DiscontinuityField>(h);
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec) throw RuntimeError("cannot create directory " + dir + ": " + ec.message());
@@ -149,7 +194,7 @@ std::vector<std::string> export_lightmaps(const std::string& dir, const Hierarch
         if (std::find(stems.begin(), stems.end(), stem) != stems.end())
             stem.append(1, '_').append(std::to_string(g));
         stems.push_back(stem);
-        const Lightmap lm = build_lightmap(h, g, stem);
+        const Lightmap lm = build_lightmap(h, g, stem, detail.get());
         if (lm.charts.empty()) continue;
         const std::string base = (std::filesystem::path(dir) / stem).string();
         write_exr(base + ".exr", lm.atlas, /*half=*/false);

@@ -83,6 +83,7 @@ int cmd_solve(int argc, char** argv) {
     validate_options(so);
     validate_output_options(out);
     exports.lux = out.images.lux; // one --lux flag: false colour and grids
+    exports.discontinuities = out.images.discontinuities == "on"; // images and lightmaps
     const std::vector<GridSpec> grid_specs = validate_export_options(exports);
 
     // From here on SIGINT/SIGTERM end the solve at the end of a shot (or before the first),

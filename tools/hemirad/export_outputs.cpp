@@ -102,7 +102,7 @@ void write_export_outputs(const ExportOptions& o, const std::vector<GridResult>&
     if (!o.grid_out.empty()) write_text_file(o.grid_out, grids_csv(grids, o.lux));
     if (!o.ply.empty()) export_ply(o.ply, h);
     if (!o.lightmaps.empty()) {
-        const std::vector<std::string> files = export_lightmaps(o.lightmaps, h);
+        const std::vector<std::string> files = export_lightmaps(o.lightmaps, h, o.discontinuities);
         if (!quiet)
             std::fprintf(stderr, "hemirad: wrote %zu lightmap files to %s\n", files.size(),
                          o.lightmaps.c_str());

@@ -24,6 +24,7 @@ struct ExportOptions {
     std::string save_solution;      ///< --save-solution FILE: solver state at the end
     std::string resume;             ///< --resume FILE: continue from a saved state
     std::string gather = "on";      ///< --gather on|off: probes and grids by final gather
+    bool discontinuities = true;    ///< --discontinuities (an image option): lightmap detail
     GatherOptions gather_options;   ///< --gather-rays, --gather-angle
 };
 void add_export_options(ArgParser& args, ExportOptions& o);

@@ -114,8 +114,8 @@ void add_image_options(ArgParser& args, ImageOutputOptions& o) {
                 "smooth (area-weighted vertex averages, interpolated) or flat (per patch)");
     args.flag("--patch-edges", &o.patch_edges, "draw the leaf patch edges as dark lines");
     args.option("--discontinuities", &o.discontinuities, "on|off",
-                "re-evaluate the pixels of leaves that straddle a shadow edge or contact line "
-                "at the point itself (direct light sampled there; off: interpolate the leaves)");
+                "images and lightmaps: leaves that straddle a shadow edge or contact line get "
+                "the direct light's detail inside them (off: the leaves only)");
     args.flag("--two-sided", &o.two_sided,
               "draw the backs of polygons (black) instead of culling them (by default a view "
               "from outside a closed room sees into it)");
