@@ -5,7 +5,8 @@
 //
 // Direct: for every emitting polygon P facing x, exitance Be_P times the form factor from x to
 // P with P's visibility sampled over its area: P is cut into cells no wider than
-// `emitter_angle` as seen from x and one shadow ray goes to a jittered point of each cell; if
+// `emitter_angle` as seen from x (at most 8 x 8) and one shadow ray goes to a jittered point
+// of each cell; if
 // every ray arrives, the exact unoccluded form factor F(dx -> P) is used (Lambert's contour
 // integral, form_factors.h); if none does, P is hidden; in a penumbra each cell is split 4 x 4
 // again and sum_k F(dx -> cell_k) * visible_k is used (one jittered ray per fine cell). So
