@@ -21,11 +21,9 @@
 #include "hemirad/gather.h"
 #include "hemirad/hierarchy.h"
 #include "hemirad/json.h"
+#include "hemirad/photometry.h"
 
 namespace hemirad {
-
-/// Luminous efficacy used for lux [lm/W].
-inline constexpr double kLumensPerWatt = 683.0;
 
 /// Most points in one grid (NX * NY).
 inline constexpr long kMaxGridPoints = 4'000'000;
