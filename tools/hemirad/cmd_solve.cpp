@@ -33,7 +33,8 @@ Json address_json(const PatchAddress& a) {
 Json shot_json(const ShotRecord& r) {
     Json j = Json::object();
     j["shot"] = r.shot;
-    j["shooter"] = address_json(r.shooter);
+    if (r.luminaire >= 0) j["luminaire"] = r.luminaire;
+    else j["shooter"] = address_json(r.shooter);
     j["shooter_power"] = r.shooter_power;
     j["links"] = r.links;
     if (r.refined) j["refined"] = r.refined;

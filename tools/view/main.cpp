@@ -482,7 +482,8 @@ int run(int argc, char** argv) {
             const Camera cam = s.camera.camera();
             // The shooter of the last shot, on top of the scene (not depth-tested).
             std::optional<PatchAddress> shooter;
-            if (s.highlight && solver.shots() > 0) shooter = solver.last_shot().shooter;
+            if (s.highlight && solver.shots() > 0 && solver.last_shot().luminaire < 0)
+                shooter = solver.last_shot().shooter;
             ColourScale scale;
             Hierarchy& h = solver.solution();
             if (s.false_colour) {
