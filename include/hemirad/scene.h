@@ -90,6 +90,9 @@ struct AddResult {
 AddResult add_polygon(Scene& scene, const std::vector<dvec3>& corners, std::uint32_t material,
                       std::uint32_t group, double planarity_tolerance = 1e-6);
 
+/// The warning finish_scene() adds when nothing emits (its start, for filtering).
+inline constexpr const char* kNoEmitterWarning = "no surface emits light";
+
 /// Checks a finished scene: at least one polygon (else InputError naming `origin`); adds a
 /// warning when nothing emits. Called by every loader. Adds no camera.
 void finish_scene(Scene& scene, const std::string& origin);

@@ -128,10 +128,10 @@ void finish_scene(Scene& s, const std::string& origin) {
     const dvec3 power = s.emitted_power();
     if (!(power.x > 0 || power.y > 0 || power.z > 0))
         s.warnings.push_back(s.luminaires.empty()
-                                 ? "no surface emits light (every Ke is 0): the solution will be "
-                                   "black"
-                                 : "neither a surface nor a luminaire emits light: the solution "
-                                   "will be black");
+                                 ? std::string(kNoEmitterWarning) +
+                                       " (every Ke is 0): the solution will be black"
+                                 : std::string(kNoEmitterWarning) +
+                                       ", nor does a luminaire: the solution will be black");
     // No camera is made up here: default_camera() (render.h) frames a scene without one.
 }
 
