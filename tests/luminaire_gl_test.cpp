@@ -108,7 +108,9 @@ struct LawCase {
     double tolerance; // relative, per point (the table's interpolation of the function)
 };
 
-double cosd(double d) { return std::cos(d * kPi / 180); }
+double cosd(double d) {
+    return std::cos(d * kPi / 180);
+}
 
 } // namespace
 
@@ -146,12 +148,12 @@ TEST(Luminaire, InverseSquareCosineLawOnABlackPlane) {
             double C = std::atan2(-d.z, d.x) * 180 / kPi;
             const double lux = c.intensity(gamma, C) * (at.y / r) / (r * r);
             const double ours = kLumensPerWatt * p.E.y;
-            EXPECT_NEAR(ours, lux, c.tolerance * lux) << c.name << " at " << p.position.x << ","
-                                                      << p.position.z;
+            EXPECT_NEAR(ours, lux, c.tolerance * lux)
+                << c.name << " at " << p.position.x << "," << p.position.z;
             worst = std::max(worst, std::abs(ours / lux - 1));
-            const double leaf = kLumensPerWatt *
-                                irradiance_at(h, *find_surface(scene, p.position, dvec3(0, 1, 0)))
-                                    .y;
+            const double leaf =
+                kLumensPerWatt *
+                irradiance_at(h, *find_surface(scene, p.position, dvec3(0, 1, 0))).y;
             worst_leaf = std::max(worst_leaf, std::abs(leaf / lux - 1));
             EXPECT_NEAR(p.E.x, p.E.y, 1e-12 * p.E.y) << "equal RGB";
         }
@@ -161,6 +163,43 @@ TEST(Luminaire, InverseSquareCosineLawOnABlackPlane) {
         // node at its centre. A few percent on this smooth field.
         EXPECT_LT(worst_leaf, 0.03) << c.name;
     }
+}
+
+// A spot aimed obliquely (cone 20, falloff 10 degrees, 2000 cd): the gather gives
+// I(gamma) cos(theta) / r^2 with gamma measured from the aim, full inside the cone, linear in
+// the falloff band, nothing beyond; the luminaire's lumens are the spot's closed form.
+TEST(Luminaire, SpotLight) {
+    ASSERT_TRUE(ensure_context());
+    Luminaire spot;
+    spot.name = "S1";
+    spot.kind = "spot";
+    spot.distribution = spot_distribution(2000, 20, 10);
+    spot.position = {0, 2, 0};
+    spot.aim = {0.5, -1, 0.2};
+    spot.orient();
+    const Scene scene = black_plane(3.0, 2, {spot});
+    Solver s(scene, gpu_options());
+    while (s.step()) {}
+    const Hierarchy& h = s.solution();
+    const FinalGather gather(h);
+    const GridResult g = evaluate_grid(h, {"floor", 15, 15}, &gather);
+    int inside = 0, band = 0, dark = 0;
+    for (const GridPoint& p : g.points) {
+        const dvec3 d = p.position - spot.position;
+        const double r = glm::length(d);
+        const double gamma = std::acos(glm::dot(d / r, spot.aim)) * 180 / kPi;
+        const double I = gamma <= 20 ? 2000 : gamma < 30 ? 2000 * (30 - gamma) / 10 : 0;
+        const double lux = I * (2 / r) / (r * r);
+        EXPECT_NEAR(kLumensPerWatt * p.E.y, lux, 1e-9 * 2000) << gamma;
+        (gamma <= 20 ? inside : gamma < 30 ? band : dark) += 1;
+    }
+    EXPECT_GT(inside, 3);
+    EXPECT_GT(band, 3);
+    EXPECT_GT(dark, 3);
+    // Flux: 2 pi I [(1 - cos 20) + int_20^30 (30 - g)/10 sin g dg], the latter in closed form.
+    const double a = 20 * kPi / 180, b = 30 * kPi / 180;
+    const double fall = (std::cos(a) - (std::sin(b) - std::sin(a)) / (b - a));
+    EXPECT_NEAR(spot.lumens(), 2 * kPi * 2000 * (1 - std::cos(a) + fall), 1e-9 * spot.lumens());
 }
 
 // A point shot's row sum, sum_j ff_j A_j: the fraction of the flux that reaches a square of
@@ -250,10 +289,10 @@ TEST(Luminaire, Cie171RoomPointSource) {
         const char* name;
         dvec3 p, n;
     } points[] = {
-        {"floor centre", {2, 0, 2}, {0, 1, 0}},   {"floor (1,1)", {1, 0, 1}, {0, 1, 0}},
+        {"floor centre", {2, 0, 2}, {0, 1, 0}},    {"floor (1,1)", {1, 0, 1}, {0, 1, 0}},
         {"floor (0.5,3)", {0.5, 0, 3}, {0, 1, 0}}, {"floor corner", {0.1, 0, 0.1}, {0, 1, 0}},
-        {"wall y0.5", {0, 0.5, 2}, {1, 0, 0}},    {"wall y1.5", {0, 1.5, 2}, {1, 0, 0}},
-        {"wall y2.5", {0, 2.5, 1}, {1, 0, 0}},    {"wall y2.9", {0, 2.9, 2}, {1, 0, 0}},
+        {"wall y0.5", {0, 0.5, 2}, {1, 0, 0}},     {"wall y1.5", {0, 1.5, 2}, {1, 0, 0}},
+        {"wall y2.5", {0, 2.5, 1}, {1, 0, 0}},     {"wall y2.9", {0, 2.9, 2}, {1, 0, 0}},
     };
     for (const auto& pt : points) {
         const dvec3 d = pt.p - at;
@@ -309,8 +348,8 @@ TEST(Luminaire, ReferenceAgreesWithTheGather) {
     const Hierarchy& h = s.solution();
     const FinalGather gather(h);
     const std::vector<Probe> probes = {
-        {{2, 0, 2}, {0, 1, 0}},   {{0.5, 0, 1}, {0, 1, 0}},  {{0, 1, 2}, {1, 0, 0}},
-        {{4, 2, 1}, {-1, 0, 0}},  {{1, 3, 1}, {0, -1, 0}},   {{3, 1.5, 0}, {0, 0, 1}},
+        {{2, 0, 2}, {0, 1, 0}},  {{0.5, 0, 1}, {0, 1, 0}}, {{0, 1, 2}, {1, 0, 0}},
+        {{4, 2, 1}, {-1, 0, 0}}, {{1, 3, 1}, {0, -1, 0}},  {{3, 1.5, 0}, {0, 0, 1}},
     };
     ReferenceOptions ro;
     ro.samples = 2048;
@@ -318,8 +357,7 @@ TEST(Luminaire, ReferenceAgreesWithTheGather) {
     for (std::size_t i = 0; i < probes.size(); ++i) {
         const auto sp = find_surface(scene, probes[i].position, probes[i].normal, 1e-6);
         ASSERT_TRUE(sp);
-        const double ours =
-            gather.at({probes[i].position, probes[i].normal, sp->polygon}, i).E().y;
+        const double ours = gather.at({probes[i].position, probes[i].normal, sp->polygon}, i).E().y;
         const double want = ref[i].E.y, sem = ref[i].sem.y;
         std::printf("reference %zu: %.5f +- %.5f, gather %.5f (%+.2f %%)\n", i, want, sem, ours,
                     100 * (ours / want - 1));

@@ -18,7 +18,9 @@ namespace {
 const std::string kDir = std::string(HEMIRAD_TEST_DATA) + "/ies/";
 constexpr double kPi = std::numbers::pi;
 
-double cosd(double deg) { return std::cos(deg * kPi / 180); }
+double cosd(double deg) {
+    return std::cos(deg * kPi / 180);
+}
 
 // The message of the InputError that parsing `text` as "bad.ies" throws ("" if none).
 std::string parse_error(const std::string& text) {
@@ -53,9 +55,9 @@ TEST(Ies, ReadsTheHeaderAndTheTable) {
 TEST(Ies, IntensityIsBilinearAndZeroOutsideTheVerticalRange) {
     const CandelaDistribution& d = read_ies(kDir + "cosine.ies").distribution;
     EXPECT_NEAR(d.intensity(0, 123), 1000, 1e-9);
-    EXPECT_NEAR(d.intensity(60, 0), 500, 1e-9);      // a tabulated angle
+    EXPECT_NEAR(d.intensity(60, 0), 500, 1e-9);                         // a tabulated angle
     EXPECT_NEAR(d.intensity(62.5, 77), 0.5 * (500 + 422.618262), 1e-9); // halfway
-    EXPECT_EQ(d.intensity(90.5, 0), 0.0);            // beyond the table: nothing upwards
+    EXPECT_EQ(d.intensity(90.5, 0), 0.0); // beyond the table: nothing upwards
     // Linear interpolation of cos on 5 degree steps: within 0.1 % of the analytic value where
     // there is light (0.4 % of the peak near 90 degrees).
     for (double g = 0; g < 85; g += 0.7) EXPECT_NEAR(d.intensity(g, 0), 1000 * cosd(g), 1.0) << g;
@@ -100,8 +102,7 @@ TEST(Ies, EverySymmetryOfHorizontalAnglesGivesTheSameDistribution) {
         EXPECT_NEAR(f.distribution.lumens(), lm, 1e-9 * lm) << c.file;
         for (double g = 0; g <= 90; g += 7.3)
             for (double C = -360; C <= 720; C += 11.7)
-                ASSERT_NEAR(f.distribution.intensity(g, C), full.distribution.intensity(g, C),
-                            1e-9)
+                ASSERT_NEAR(f.distribution.intensity(g, C), full.distribution.intensity(g, C), 1e-9)
                     << c.file << " gamma " << g << " C " << C;
     }
     // Spot values against the analytic function (15 degree steps in C: within 2 %).
@@ -136,12 +137,12 @@ TEST(Ies, MultipliersAndFormats) {
     EXPECT_EQ(abs.rated_lumens(), 0);
     EXPECT_NEAR(abs.distribution.lumens(), 400 * kPi, 1e-9);
     // In LM-63-2002 the second value of the ballast line is "future use": not applied.
-    const IesFile f = parse_ies(file_with("1 -1 1 2 1 1 2 0 0 0\n1 0.5 10\n0 90\n0\n10 10\n"),
-                                "t.ies");
+    const IesFile f =
+        parse_ies(file_with("1 -1 1 2 1 1 2 0 0 0\n1 0.5 10\n0 90\n0\n10 10\n"), "t.ies");
     EXPECT_NEAR(f.distribution.intensity(45, 0), 10, 1e-12);
     // Commas as delimiters, values spread over lines anyhow.
-    const IesFile g = parse_ies(file_with("1,-1,3,2,1,1,2,0,0,0,1,1,10\n0,\n90 0 10\n10\n"),
-                                "t.ies");
+    const IesFile g =
+        parse_ies(file_with("1,-1,3,2,1,1,2,0,0,0,1,1,10\n0,\n90 0 10\n10\n"), "t.ies");
     EXPECT_NEAR(g.distribution.intensity(0, 0), 30, 1e-12);
 }
 
@@ -174,10 +175,10 @@ TEST(Ies, ErrorsNameFileLineAndValue) {
         {"1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 60 50\n0\n10 10 10\n", "bad.ies:7:", "50"},
         {"1 -1 1 2 1 1 2 0 0 0\n1 1 10\n10 90\n0\n10 10\n", "bad.ies:7:", "vertical angle 10"},
         {"1 -1 1 2 1 1 2 0 0 0\n1 1 10\n0 80\n0\n10 10\n", "bad.ies:7:", "vertical angle 80"},
-        {"1 -1 1 2 2 1 2 0 0 0\n1 1 10\n0 90\n0 270\n10 10\n10 10\n", "bad.ies:8:",
-         "horizontal angle 270"},
-        {"1 -1 1 2 2 1 2 0 0 0\n1 1 10\n0 90\n45 90\n10 10\n10 10\n", "bad.ies:8:",
-         "horizontal angle 45"},
+        {"1 -1 1 2 2 1 2 0 0 0\n1 1 10\n0 90\n0 270\n10 10\n10 10\n",
+         "bad.ies:8:", "horizontal angle 270"},
+        {"1 -1 1 2 2 1 2 0 0 0\n1 1 10\n0 90\n45 90\n10 10\n10 10\n",
+         "bad.ies:8:", "horizontal angle 45"},
         {"1 -1 1 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n10 -1\n", "bad.ies:9:", "-1"},
         {"1 -1 1 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n10\n", "bad.ies:9:", "candela value 2"},
         {"1 -1 1 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n10 10 10\n", "bad.ies:9:", "'10' after"},
@@ -230,7 +231,7 @@ TEST(Photometry, LuminaireOrientation) {
     EXPECT_NEAR(glm::length(l.aim), 1, 1e-15);
     EXPECT_NEAR(glm::distance(l.c0, glm::dvec3(1, 0, 0)), 0, 1e-12);
     EXPECT_NEAR(glm::distance(l.c90, glm::dvec3(0, 0, -1)), 0, 1e-12); // x -> -z, from above
-    const glm::dvec3 d = glm::normalize(glm::dvec3(1, -1, 0)); // gamma 45, C 0
+    const glm::dvec3 d = glm::normalize(glm::dvec3(1, -1, 0));         // gamma 45, C 0
     EXPECT_NEAR(l.intensity(d), l.distribution.intensity(45, 0), 1e-9);
     const glm::dvec3 e = glm::normalize(glm::dvec3(0, -1, -1)); // gamma 45, C 90
     EXPECT_NEAR(l.intensity(e), l.distribution.intensity(45, 90), 1e-9);

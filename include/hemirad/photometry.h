@@ -74,8 +74,8 @@ struct IesFile {
     int lamps = 1;
     double lumens_per_lamp = -1; ///< rated lamp lumens; -1: absolute photometry
     double candela_multiplier = 1;
-    int photometric_type = 1;    ///< 1 = C (the only one read)
-    int units = 2;               ///< of the luminous opening: 1 feet, 2 metres
+    int photometric_type = 1;                 ///< 1 = C (the only one read)
+    int units = 2;                            ///< of the luminous opening: 1 feet, 2 metres
     double width = 0, length = 0, height = 0; ///< luminous opening (not used: a point source)
     double ballast_factor = 1;
     double ballast_lamp_factor = 1; ///< 1991/1995 only ("future use" in 2002, ignored)
@@ -100,10 +100,10 @@ IesFile read_ies(const std::string& path);
 
 /// A point-source luminaire placed in a scene (SCENE.json "luminaires", scene_json.h).
 struct Luminaire {
-    std::string name;      ///< for reports ("L1", or the "name" given)
-    std::string kind;      ///< "ies", "candela" or "spot"
-    std::string file;      ///< the IES file as given (kind "ies"), else ""
-    glm::dvec3 position{0.0};     ///< [scene units; metres for lux]
+    std::string name;               ///< for reports ("L1", or the "name" given)
+    std::string kind;               ///< "ies", "candela" or "spot"
+    std::string file;               ///< the IES file as given (kind "ies"), else ""
+    glm::dvec3 position{0.0};       ///< [scene units; metres for lux]
     glm::dvec3 aim{0.0, -1.0, 0.0}; ///< the photometric nadir (gamma = 0), unit (orient())
     double rotation = 0;   ///< turns the C planes about the aim, counterclockwise from above [deg]
     double multiplier = 1; ///< scales the intensity (and lumens), > 0

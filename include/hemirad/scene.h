@@ -64,8 +64,8 @@ struct Scene {
     const Material& material_of(const Polygon& p) const { return materials[p.material]; }
     /// Everything emitted [W]: surface_power() + luminaire_power().
     dvec3 emitted_power() const;
-    dvec3 surface_power() const;       ///< of the polygons: sum of pi*Ke*area [W]
-    dvec3 luminaire_power() const;     ///< of the luminaires: sum of lumens/683, equal RGB [W]
+    dvec3 surface_power() const;   ///< of the polygons: sum of pi*Ke*area [W]
+    dvec3 luminaire_power() const; ///< of the luminaires: sum of lumens/683, equal RGB [W]
     double total_area() const;
     double max_reflectance() const;    ///< max over materials in use and channels
     /// Of the polygons (and the luminaires' positions).

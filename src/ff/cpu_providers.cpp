@@ -1,7 +1,7 @@
 // CPU form-factor providers: the factory and the linking code they share (cpu_linking.h).
 #include <algorithm>
-#include <chrono>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -172,8 +172,7 @@ void CpuProvider::shoot_point(const Luminaire& l, std::vector<Link>& links) {
             const Polygon& poly = scene_.polygons[r];
             if (!(glm::dot(poly.normal, l.position - poly.v[0]) > 0)) return; // faces away
             std::vector<ReceiverNode> nodes;
-            receiver_nodes(poly, r, depth_of(r), link_at_leaves_, options_.link_angle, at,
-                           nodes);
+            receiver_nodes(poly, r, depth_of(r), link_at_leaves_, options_.link_angle, at, nodes);
             for (const ReceiverNode& node : nodes) {
                 const dvec3& x = node.geometry.centre;
                 const double e = l.irradiance(x, poly.normal) / power;

@@ -155,9 +155,9 @@ public:
                         const dvec3 u = gpu::hemicube_direction(layout, frame, f, i, j);
                         const double c = glm::dot(u, frame.dir[f]);
                         const double omega = d2 * c * c * c; // solid angle of the pixel
-                        scan_pixel(px.data(), at,
-                                   float(luminaire.intensity(u) * omega /
-                                         (kLumensPerWatt * power)));
+                        scan_pixel(
+                            px.data(), at,
+                            float(luminaire.intensity(u) * omega / (kLumensPerWatt * power)));
                     }
             }
             t_reduce += since(t0);
@@ -176,15 +176,13 @@ public:
         last_shooter_ = sides[1];
         link_touched(sides[0], 1.0, links);
         if (mode_ != Mode::Hemicube)
-            for (int k = 0; k < 2; ++k)
-                link_missed_polygons(sides[k], layout, *buffers[k], links);
+            for (int k = 0; k < 2; ++k) link_missed_polygons(sides[k], layout, *buffers[k], links);
         t_reduce += since(t0);
         point_ = nullptr;
         timings_.push_back({"render", t_render});
         timings_.push_back({"readback", t_read});
         timings_.push_back({"reduce", t_reduce});
     }
-
 
 private:
     const gpu::HemicubeLayout& layout_for(const Shooter& shooter) {
@@ -442,7 +440,7 @@ private:
     std::deque<gpu::HemicubeLayout> layouts_; // deque: references stay valid as it grows
     std::vector<std::uint64_t> base_;
     std::vector<float> pixels_, pixel_sum_, analytic_, area_;
-    std::vector<float> pixels_back_; ///< a point shot's hemicube against the aim
+    std::vector<float> pixels_back_;   ///< a point shot's hemicube against the aim
     const Luminaire* point_ = nullptr; ///< during shoot_point(): the luminaire
     double point_power_ = 0;           ///< its power per channel [W]
     std::vector<std::uint32_t> seen_, below_seen_, polygon_seen_;

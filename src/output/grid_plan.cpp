@@ -12,11 +12,16 @@ namespace {
 
 std::string format_value(double v) {
     char buf[32];
-    if (v >= 1000) std::snprintf(buf, sizeof buf, "%.0f", v);
-    else if (v >= 100) std::snprintf(buf, sizeof buf, "%.0f", v);
-    else if (v >= 10) std::snprintf(buf, sizeof buf, "%.1f", v);
-    else if (v >= 0.01 || v == 0) std::snprintf(buf, sizeof buf, "%.2f", v);
-    else std::snprintf(buf, sizeof buf, "%.1e", v);
+    if (v >= 1000)
+        std::snprintf(buf, sizeof buf, "%.0f", v);
+    else if (v >= 100)
+        std::snprintf(buf, sizeof buf, "%.0f", v);
+    else if (v >= 10)
+        std::snprintf(buf, sizeof buf, "%.1f", v);
+    else if (v >= 0.01 || v == 0)
+        std::snprintf(buf, sizeof buf, "%.2f", v);
+    else
+        std::snprintf(buf, sizeof buf, "%.1e", v);
     return buf;
 }
 
@@ -53,9 +58,8 @@ Image8 grid_plan_image(const GridResult& g, bool lux, const std::vector<Luminair
         const std::string text = format_value(v);
         if (cell >= 10 && text_width(text) <= cell - 2) {
             const bool light = 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b > 128;
-            draw_text(img, x + (cell - text_width(text)) / 2,
-                      y + (cell - text_height(text)) / 2, text,
-                      light ? Rgb8{0, 0, 0} : Rgb8{255, 255, 255});
+            draw_text(img, x + (cell - text_width(text)) / 2, y + (cell - text_height(text)) / 2,
+                      text, light ? Rgb8{0, 0, 0} : Rgb8{255, 255, 255});
         }
     }
     if (cell >= 6)

@@ -64,8 +64,9 @@ class Reader {
     int integer(const std::string& what, int& line) {
         const double x = number(what, line);
         if (x != std::floor(x) || std::abs(x) > 1e6)
-            throw InputError(path_, line, what + ": expected a whole number, got '" +
-                                              tokens_[next_ - 1].text + "'");
+            throw InputError(path_, line,
+                             what + ": expected a whole number, got '" + tokens_[next_ - 1].text +
+                                 "'");
         return int(x);
     }
     const std::string& last_text() const { return tokens_[next_ - 1].text; }
@@ -111,13 +112,18 @@ IesFile parse_ies(const std::string& text, const std::string& path) {
     std::string first = trim(lines[0]);
     if (first.size() >= 3 && static_cast<unsigned char>(first[0]) == 0xEF) first = first.substr(3);
     const std::string head = upper(first);
-    if (head.rfind("IESNA:LM-63-2002", 0) == 0) f.format = "LM-63-2002", k = 1;
-    else if (head.rfind("IESNA:LM-63-1995", 0) == 0) f.format = "LM-63-1995", k = 1;
-    else if (head.rfind("IESNA91", 0) == 0) f.format = "LM-63-1991", k = 1;
+    if (head.rfind("IESNA:LM-63-2002", 0) == 0)
+        f.format = "LM-63-2002", k = 1;
+    else if (head.rfind("IESNA:LM-63-1995", 0) == 0)
+        f.format = "LM-63-1995", k = 1;
+    else if (head.rfind("IESNA91", 0) == 0)
+        f.format = "LM-63-1991", k = 1;
     else if (head.rfind("IESNA", 0) == 0)
-        throw InputError(path, 1, "unknown format line '" + first +
-                                      "' (expected IESNA:LM-63-2002, IESNA:LM-63-1995 or IESNA91)");
-    else f.format = "LM-63-1986";
+        throw InputError(path, 1,
+                         "unknown format line '" + first +
+                             "' (expected IESNA:LM-63-2002, IESNA:LM-63-1995 or IESNA91)");
+    else
+        f.format = "LM-63-1986";
     std::size_t tilt_line = lines.size();
     for (; k < lines.size(); ++k) {
         const std::string l = trim(lines[k]);
@@ -130,8 +136,10 @@ IesFile parse_ies(const std::string& text, const std::string& path) {
             if (close != std::string::npos) {
                 const std::string key = l.substr(1, close - 1);
                 const std::string value = trim(l.substr(close + 1));
-                if (key == "MORE" && !f.keywords.empty()) f.keywords.back().second += " " + value;
-                else f.keywords.emplace_back(key, value);
+                if (key == "MORE" && !f.keywords.empty())
+                    f.keywords.back().second += " " + value;
+                else
+                    f.keywords.emplace_back(key, value);
             }
         }
     }
@@ -141,8 +149,9 @@ IesFile parse_ies(const std::string& text, const std::string& path) {
     const std::string tilt = trim(tilt_text.substr(tilt_text.find('=') + 1));
     if (upper(tilt) != "NONE")
         throw InputError(path, int(tilt_line) + 1,
-                         "TILT=" + tilt + ": only TILT=NONE is supported (tilt data, which "
-                         "changes the output with the lamp's inclination, is not read)");
+                         "TILT=" + tilt +
+                             ": only TILT=NONE is supported (tilt data, which "
+                             "changes the output with the lamp's inclination, is not read)");
 
     std::vector<Token> tokens;
     for (std::size_t i = tilt_line + 1; i < lines.size(); ++i) {
@@ -177,8 +186,7 @@ IesFile parse_ies(const std::string& text, const std::string& path) {
         const char* name = f.photometric_type == 2   ? " (type B)"
                            : f.photometric_type == 3 ? " (type A)"
                                                      : "";
-        fail(path, line, "photometric type", r.last_text() + name,
-             "only type C (1) is supported");
+        fail(path, line, "photometric type", r.last_text() + name, "only type C (1) is supported");
     }
     f.units = r.integer("units type", line);
     if (f.units != 1 && f.units != 2)
@@ -188,9 +196,8 @@ IesFile parse_ies(const std::string& text, const std::string& path) {
     f.height = r.number("luminous opening height");
     f.ballast_factor = r.number("ballast factor", line);
     if (!(f.ballast_factor > 0)) fail(path, line, "ballast factor", r.last_text(), "must be > 0");
-    const double blp = r.number(f.format == "LM-63-2002" ? "future use value"
-                                                         : "ballast-lamp photometric factor",
-                                line);
+    const double blp = r.number(
+        f.format == "LM-63-2002" ? "future use value" : "ballast-lamp photometric factor", line);
     if (f.format != "LM-63-2002") {
         if (!(blp > 0))
             fail(path, line, "ballast-lamp photometric factor", r.last_text(), "must be > 0");
@@ -205,9 +212,8 @@ IesFile parse_ies(const std::string& text, const std::string& path) {
     std::string prev;
     for (int i = 0; i < nv; ++i) {
         if (i > 0) prev = r.last_text();
-        d.gamma[i] = r.number("vertical angle " + std::to_string(i + 1) + " of " +
-                                  std::to_string(nv),
-                              line);
+        d.gamma[i] =
+            r.number("vertical angle " + std::to_string(i + 1) + " of " + std::to_string(nv), line);
         if (i == 0) first_v_line = line, first_v = r.last_text();
         last_v_line = line, last_v = r.last_text();
         if (i > 0 && !(d.gamma[i] > d.gamma[i - 1]))
@@ -226,8 +232,7 @@ IesFile parse_ies(const std::string& text, const std::string& path) {
     std::vector<std::string> h_text; // every horizontal angle as written
     for (int i = 0; i < nh; ++i) {
         if (i > 0) prev = r.last_text();
-        d.c[i] = r.number("horizontal angle " + std::to_string(i + 1) + " of " +
-                              std::to_string(nh),
+        d.c[i] = r.number("horizontal angle " + std::to_string(i + 1) + " of " + std::to_string(nh),
                           line);
         h_text.push_back(r.last_text());
         if (i == 0) first_h_line = line, first_h = r.last_text();
@@ -237,11 +242,16 @@ IesFile parse_ies(const std::string& text, const std::string& path) {
                  "horizontal angles must increase (the one before is " + prev + ")");
     }
     const double c_first = d.c.front(), c_last = d.c.back();
-    if (c_first == 0 && c_last == 0) d.symmetry = HorizontalSymmetry::Axial;
-    else if (c_first == 0 && c_last == 90) d.symmetry = HorizontalSymmetry::Quadrant;
-    else if (c_first == 0 && c_last == 180) d.symmetry = HorizontalSymmetry::Bilateral;
-    else if (c_first == 90 && c_last == 270) d.symmetry = HorizontalSymmetry::Bilateral90;
-    else if (c_first == 0 && c_last == 360) d.symmetry = HorizontalSymmetry::None;
+    if (c_first == 0 && c_last == 0)
+        d.symmetry = HorizontalSymmetry::Axial;
+    else if (c_first == 0 && c_last == 90)
+        d.symmetry = HorizontalSymmetry::Quadrant;
+    else if (c_first == 0 && c_last == 180)
+        d.symmetry = HorizontalSymmetry::Bilateral;
+    else if (c_first == 90 && c_last == 270)
+        d.symmetry = HorizontalSymmetry::Bilateral90;
+    else if (c_first == 0 && c_last == 360)
+        d.symmetry = HorizontalSymmetry::None;
     else if (c_first != 0 && c_first != 90)
         fail(path, first_h_line, "first horizontal angle", first_h,
              "must be 0 (or 90, with 270 as the last) for type C photometry");
@@ -257,8 +267,7 @@ IesFile parse_ies(const std::string& text, const std::string& path) {
             const double x = r.number("candela value " + std::to_string(v + 1) + " of plane " +
                                           std::to_string(h + 1) + " (C = " + h_text[h] + ")",
                                       line);
-            if (x < 0)
-                fail(path, line, "candela value", r.last_text(), "must be >= 0");
+            if (x < 0) fail(path, line, "candela value", r.last_text(), "must be >= 0");
             d.candela[std::size_t(h) * nv + v] = x * scale;
         }
     if (!r.done())

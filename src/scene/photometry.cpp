@@ -33,17 +33,20 @@ void bracket(const std::vector<double>& a, double x, std::size_t& k, double& t) 
 // Maps a horizontal angle in [0, 360) into the range the table covers.
 double fold(HorizontalSymmetry s, double c) {
     switch (s) {
-    case HorizontalSymmetry::Axial: return 0;
+    case HorizontalSymmetry::Axial:
+        return 0;
     case HorizontalSymmetry::Quadrant:
         if (c > 180) c = 360 - c;
         return c > 90 ? 180 - c : c;
-    case HorizontalSymmetry::Bilateral: return c > 180 ? 360 - c : c;
+    case HorizontalSymmetry::Bilateral:
+        return c > 180 ? 360 - c : c;
     case HorizontalSymmetry::Bilateral90:
         // Mirror about the 90-270 plane: C -> 180 - C (mod 360).
         if (c < 90) return 180 - c;
         if (c > 270) return 540 - c;
         return c;
-    case HorizontalSymmetry::None: return c;
+    case HorizontalSymmetry::None:
+        return c;
     }
     return c;
 }
@@ -61,11 +64,16 @@ double linear_sin_integral(double a, double b, double fa, double fb) {
 
 const char* to_string(HorizontalSymmetry s) {
     switch (s) {
-    case HorizontalSymmetry::Axial: return "axial (0)";
-    case HorizontalSymmetry::Quadrant: return "quadrant (0-90)";
-    case HorizontalSymmetry::Bilateral: return "bilateral (0-180)";
-    case HorizontalSymmetry::Bilateral90: return "bilateral (90-270)";
-    case HorizontalSymmetry::None: return "none (0-360)";
+    case HorizontalSymmetry::Axial:
+        return "axial (0)";
+    case HorizontalSymmetry::Quadrant:
+        return "quadrant (0-90)";
+    case HorizontalSymmetry::Bilateral:
+        return "bilateral (0-180)";
+    case HorizontalSymmetry::Bilateral90:
+        return "bilateral (90-270)";
+    case HorizontalSymmetry::None:
+        return "none (0-360)";
     }
     return "?";
 }
@@ -98,8 +106,8 @@ double CandelaDistribution::lumens() const {
     std::vector<double> g(c.size(), 0.0);
     for (std::size_t i = 0; i < c.size(); ++i)
         for (std::size_t j = 0; j + 1 < ng; ++j)
-            g[i] += linear_sin_integral(gamma[j] * kDeg, gamma[j + 1] * kDeg,
-                                        candela[i * ng + j], candela[i * ng + j + 1]);
+            g[i] += linear_sin_integral(gamma[j] * kDeg, gamma[j + 1] * kDeg, candela[i * ng + j],
+                                        candela[i * ng + j + 1]);
     if (c.size() == 1 || symmetry == HorizontalSymmetry::Axial) return 2 * kPi * g[0];
     // Linear in C between planes: the trapezoid rule is exact; the table covers 1/copies of
     // the circle.
@@ -108,10 +116,15 @@ double CandelaDistribution::lumens() const {
         sum += 0.5 * (c[i + 1] - c[i]) * kDeg * (g[i] + g[i + 1]);
     double copies = 1;
     switch (symmetry) {
-    case HorizontalSymmetry::Quadrant: copies = 4; break;
+    case HorizontalSymmetry::Quadrant:
+        copies = 4;
+        break;
     case HorizontalSymmetry::Bilateral:
-    case HorizontalSymmetry::Bilateral90: copies = 2; break;
-    default: break;
+    case HorizontalSymmetry::Bilateral90:
+        copies = 2;
+        break;
+    default:
+        break;
     }
     return copies * sum;
 }
@@ -134,7 +147,8 @@ CandelaDistribution spot_distribution(double candela, double cone, double fallof
     if (!(cone > 0 && cone <= 180))
         throw InputError("spot cone " + num(cone) + " must be in (0, 180] degrees");
     if (!(falloff >= 0 && cone + falloff <= 180))
-        throw InputError("spot falloff " + num(falloff) + " must be >= 0 with cone + falloff <= "
+        throw InputError("spot falloff " + num(falloff) +
+                         " must be >= 0 with cone + falloff <= "
                          "180 degrees");
     if (cone >= 180) return isotropic_distribution(candela);
     CandelaDistribution d;
@@ -156,8 +170,8 @@ void Luminaire::orient() {
     if (!(len > 0) || !std::isfinite(len))
         throw InputError("luminaire " + name + ": aim must be a non-zero direction");
     aim /= len;
-    const glm::dvec3 ref = std::abs(aim.x) > std::cos(25 * kDeg) ? glm::dvec3(0, 0, 1)
-                                                                 : glm::dvec3(1, 0, 0);
+    const glm::dvec3 ref =
+        std::abs(aim.x) > std::cos(25 * kDeg) ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
     glm::dvec3 x = ref - glm::dot(ref, aim) * aim;
     x = glm::normalize(x);
     const glm::dvec3 y = glm::cross(x, aim);

@@ -135,7 +135,9 @@ void finish_scene(Scene& s, const std::string& origin) {
     // No camera is made up here: default_camera() (render.h) frames a scene without one.
 }
 
-dvec3 Scene::emitted_power() const { return surface_power() + luminaire_power(); }
+dvec3 Scene::emitted_power() const {
+    return surface_power() + luminaire_power();
+}
 
 dvec3 Scene::surface_power() const {
     dvec3 p(0.0);
@@ -205,8 +207,7 @@ std::uint64_t Scene::content_hash() const {
     // Luminaires change the solution: their placement and distribution count (none: the hash
     // of a scene without luminaires is what it always was).
     for (const Luminaire& l : luminaires) {
-        for (const dvec3* v : {&l.position, &l.aim, &l.c0})
-            mix(v, sizeof(dvec3));
+        for (const dvec3* v : {&l.position, &l.aim, &l.c0}) mix(v, sizeof(dvec3));
         mix(&l.multiplier, sizeof l.multiplier);
         const CandelaDistribution& d = l.distribution;
         mix(d.gamma.data(), d.gamma.size() * sizeof(double));

@@ -55,9 +55,9 @@ class KeyLines final : public nlohmann::json_sax<json> {
   private:
     struct Frame {
         bool array = false;
-        long next = 0;      // arrays: index of the next element
-        std::string key;    // objects: the last key
-        std::string name;   // this container's pointer component
+        long next = 0;    // arrays: index of the next element
+        std::string key;  // objects: the last key
+        std::string name; // this container's pointer component
     };
 
     static std::string escape(const std::string& k) {
@@ -98,8 +98,8 @@ class KeyLines final : public nlohmann::json_sax<json> {
             while (after < text_.size() && std::isspace(static_cast<unsigned char>(text_[after])))
                 ++after;
             if (after < text_.size() && text_[after] == ':') {
-                line_ += int(std::count(text_.begin() + long(cursor_), text_.begin() + long(pos),
-                                        '\n'));
+                line_ +=
+                    int(std::count(text_.begin() + long(cursor_), text_.begin() + long(pos), '\n'));
                 cursor_ = pos;
                 return line_;
             }
@@ -138,8 +138,10 @@ class Reader {
         std::getline(in, part, '/'); // leading empty
         while (std::getline(in, part, '/')) {
             const bool index = !part.empty() && std::all_of(part.begin(), part.end(), ::isdigit);
-            if (index) out += "[" + part + "]";
-            else out += (out.empty() ? "" : ".") + part;
+            if (index)
+                out += "[" + part + "]";
+            else
+                out += (out.empty() ? "" : ".") + part;
         }
         return out.empty() ? "(top level)" : out;
     }
@@ -149,7 +151,8 @@ class Reader {
         if (!o.is_object()) fail(at, "expected an object {...}, got " + dump(o));
         for (const auto& [k, v] : o.items()) {
             (void)v;
-            if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return k == a; })) {
+            if (std::none_of(allowed.begin(), allowed.end(),
+                             [&](const char* a) { return k == a; })) {
                 std::string list;
                 for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
                 fail(at + "/" + k, "unknown key '" + k + "' (expected: " + list + ")");
@@ -280,7 +283,8 @@ Luminaire read_luminaire(const Reader& r, const json& j, const std::string& at, 
 Camera read_camera(const Reader& r, const json& j, const std::string& at, std::size_t k) {
     r.only_keys(j, at, {"name", "eye", "target", "up", "fov"});
     Camera c;
-    c.name = j.contains("name") ? r.string(j["name"], at + "/name") : "camera" + std::to_string(k + 1);
+    c.name =
+        j.contains("name") ? r.string(j["name"], at + "/name") : "camera" + std::to_string(k + 1);
     if (!j.contains("eye") || !j.contains("target"))
         r.fail(at, "a camera needs 'eye' and 'target' [x, y, z] (and optionally 'up', 'fov')");
     c.eye = r.vec3(j["eye"], at + "/eye");
@@ -299,7 +303,9 @@ Camera read_camera(const Reader& r, const json& j, const std::string& at, std::s
 
 } // namespace
 
-bool is_scene_json(const std::string& path) { return lower_extension(path) == ".json"; }
+bool is_scene_json(const std::string& path) {
+    return lower_extension(path) == ".json";
+}
 
 Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
     std::ifstream in(path, std::ios::binary);
@@ -314,7 +320,8 @@ Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
         // "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
         std::string m = e.what();
         const auto at = m.find("parse error");
-        throw InputError(path, 0, "not valid JSON: " + (at == std::string::npos ? m : m.substr(at)));
+        throw InputError(path, 0,
+                         "not valid JSON: " + (at == std::string::npos ? m : m.substr(at)));
     }
     KeyLines locator(text);
     json::sax_parse(text, &locator);

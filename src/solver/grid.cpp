@@ -231,8 +231,8 @@ std::string grid_summary(const GridResult& g, bool lux) {
     std::snprintf(buf, sizeof buf,
                   "%s %dx%d: Emin %.4g%s, Eavg %.4g%s, Emax %.4g%s, U0 = Emin/Eavg %.3f, "
                   "Emin/Emax %.3f",
-                  g.spec.group.c_str(), g.spec.nx, g.spec.ny, k * g.Y_min, unit, k * g.Y_avg,
-                  unit, k * g.Y_max, unit, g.U0, g.min_over_max);
+                  g.spec.group.c_str(), g.spec.nx, g.spec.ny, k * g.Y_min, unit, k * g.Y_avg, unit,
+                  k * g.Y_max, unit, g.U0, g.min_over_max);
     return buf;
 }
 

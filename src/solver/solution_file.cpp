@@ -268,9 +268,10 @@ SolutionFile parse_solution(const std::string& bytes, const std::string& path) {
     for (std::size_t i = 0; i < sizeof kMagic; ++i) head.u8("magic");
     const std::uint32_t version = head.u32("version");
     if (version != kSolutionFileVersion && version != 1)
-        throw InputError(path, 0, "solution file format version " + std::to_string(version) +
-                                      " is not supported (this hemirad reads versions 1 to " +
-                                      std::to_string(kSolutionFileVersion) + ")");
+        throw InputError(path, 0,
+                         "solution file format version " + std::to_string(version) +
+                             " is not supported (this hemirad reads versions 1 to " +
+                             std::to_string(kSolutionFileVersion) + ")");
     const std::size_t body = bytes.size() - 8;
     std::uint64_t stored = 0;
     for (int i = 0; i < 8; ++i) stored |= std::uint64_t(std::uint8_t(bytes[body + i])) << (8 * i);

@@ -137,7 +137,8 @@ void Solver::check_stop() {
     else if (shots_ >= options_.max_shots) stop_ = StopReason::MaxShots;
     else if (options_.time_limit > 0 && seconds_ >= options_.time_limit)
         stop_ = StopReason::TimeLimit;
-    else if (sum(unshot_power()) <= 0) stop_ = StopReason::NothingToShoot;
+    else if (sum(unshot_power()) <= 0)
+        stop_ = StopReason::NothingToShoot;
     else stop_ = StopReason::Running;
 }
 

@@ -24,7 +24,10 @@ int cmd_scene(int argc, char** argv) {
     ObjOptions obj;
     ArgParser args("hemirad scene", "hemirad scene SCENE [--json] [--obj FILE.obj] [options]",
                    "Loads a scene and prints what it holds; writes it as OBJ/MTL with --obj.");
-    args.positional("SCENE", &name, std::string("OBJ file or built-in scene (") + builtin_names() + ")");
+    args.positional(
+        "SCENE", &name,
+        std::string("OBJ file, SCENE.json (OBJ files, luminaires, cameras) or built-in scene (") +
+            builtin_names() + ")");
     args.flag("--json", &json, "print JSON instead of text");
     args.option("--obj", &obj_out, "FILE.obj",
                 "also write the scene as OBJ, with its materials in FILE.mtl beside it (how "

@@ -33,8 +33,10 @@ Json address_json(const PatchAddress& a) {
 Json shot_json(const ShotRecord& r) {
     Json j = Json::object();
     j["shot"] = r.shot;
-    if (r.luminaire >= 0) j["luminaire"] = r.luminaire;
-    else j["shooter"] = address_json(r.shooter);
+    if (r.luminaire >= 0)
+        j["luminaire"] = r.luminaire;
+    else
+        j["shooter"] = address_json(r.shooter);
     j["shooter_power"] = r.shooter_power;
     j["links"] = r.links;
     if (r.refined) j["refined"] = r.refined;
@@ -67,7 +69,10 @@ int cmd_solve(int argc, char** argv) {
     ArgParser args("hemirad solve", "hemirad solve SCENE [options]",
                    "Solves the radiosity of a scene by progressive shooting until the error\n"
                    "bound falls under the tolerance, then writes what was asked for.");
-    args.positional("SCENE", &scene_name, std::string("OBJ file or built-in scene (") + builtin_names() + ")");
+    args.positional(
+        "SCENE", &scene_name,
+        std::string("OBJ file, SCENE.json (OBJ files, luminaires, cameras) or built-in scene (") +
+            builtin_names() + ")");
     add_solver_options(args, so);
     args.section("output");
     args.option("--report", &report, "FILE.json", "write a JSON report");
@@ -127,9 +132,8 @@ int cmd_solve(int argc, char** argv) {
                          scene.luminaires.size(), total);
             for (const Luminaire& l : scene.luminaires)
                 std::fprintf(stderr, "hemirad:   %-10s %-7s %9.6g lm at (%g, %g, %g)%s%s\n",
-                             l.name.c_str(), l.kind.c_str(), l.lumens(), l.position.x,
-                             l.position.y, l.position.z, l.file.empty() ? "" : "  ",
-                             l.file.c_str());
+                             l.name.c_str(), l.kind.c_str(), l.lumens(), l.position.x, l.position.y,
+                             l.position.z, l.file.empty() ? "" : "  ", l.file.c_str());
         }
     }
     std::ofstream log_file;

@@ -117,13 +117,14 @@ void write_export_outputs(const ExportOptions& o, const std::vector<GridResult>&
         for (const GridResult& g : grids) {
             std::string name;
             for (char c : g.spec.group)
-                name += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.'
-                            ? c
-                            : '_';
+                name +=
+                    std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.' ? c : '_';
             if (name.empty() || name[0] == '.') name.insert(0, "grid");
             if (!used.insert(name).second)
-                name.append("-").append(std::to_string(g.spec.nx)).append("x").append(
-                    std::to_string(g.spec.ny));
+                name.append("-")
+                    .append(std::to_string(g.spec.nx))
+                    .append("x")
+                    .append(std::to_string(g.spec.ny));
             used.insert(name);
             const std::string path = (std::filesystem::path(o.grid_png) / (name + ".png")).string();
             write_png(path, grid_plan_image(g, o.lux, h.scene().luminaires));
