@@ -75,8 +75,8 @@ Json grid_json(const GridResult& g, bool lux);
 /// 0.594, Emin/Emax 0.396" (in W/unit² without lux).
 std::string grid_summary(const GridResult& g, bool lux);
 
-/// A false-colour plan view of a grid (`hemirad solve --grid-png DIR`): one square cell per
-/// point, seen from the front of the surface (u to the right, v up), coloured by its value
+/// A false-colour plan view of a grid (`hemirad solve --grid-png DIR`): one cell per point, to
+/// scale, seen from the front of the surface (u to the right, v up), coloured by its value
 /// (viridis, 0 to the grid's maximum) with the value printed in it when the cell is large
 /// enough; points on no polygon grey; the positions of the luminaires in front of the plane
 /// within the grid marked with a cross and their name; a title with Emin, Eavg, Emax, U0 and

@@ -31,8 +31,12 @@ Image8 grid_plan_image(const GridResult& g, bool lux, const std::vector<Luminair
     const int nx = g.spec.nx, ny = g.spec.ny;
     const double k = lux ? kLumensPerWatt : 1.0;
     const double hi = k * g.Y_max > 0 ? k * g.Y_max : 1.0;
-    const int cell = std::clamp(720 / std::max(nx, ny), 3, 72);
-    const int plan_w = nx * cell, plan_h = ny * cell;
+    // Cells to scale (720 pixels for the longer side), each 3..72 pixels.
+    const double longer = std::max({g.width, g.height, 1e-300});
+    const double px = 720 / longer; // pixels per scene unit
+    const int cw = std::clamp(int(std::lround(px * g.width / nx)), 3, 72);
+    const int ch = std::clamp(int(std::lround(px * g.height / ny)), 3, 72);
+    const int plan_w = nx * cw, plan_h = ny * ch;
     const std::string title = "grid " + g.spec.group + " " + std::to_string(nx) + "x" +
                               std::to_string(ny) + " (" + std::to_string(g.evaluated) +
                               " points), plan seen from the front: u right, v up";
@@ -47,27 +51,27 @@ Image8 grid_plan_image(const GridResult& g, bool lux, const std::vector<Luminair
     draw_text(img, kLeft, 18, summary, ink);
 
     for (const GridPoint& p : g.points) {
-        const int x = kLeft + p.i * cell, y = kTop + (ny - 1 - p.j) * cell;
+        const int x = kLeft + p.i * cw, y = kTop + (ny - 1 - p.j) * ch;
         if (!p.on_surface) {
-            fill_rect(img, x, y, cell, cell, Rgb8{170, 170, 170});
+            fill_rect(img, x, y, cw, ch, Rgb8{170, 170, 170});
             continue;
         }
         const double v = k * luminance(p.E.x, p.E.y, p.E.z);
         const Rgb8 c = false_colour(colour_scale_position(v, 0, hi, false));
-        fill_rect(img, x, y, cell, cell, c);
+        fill_rect(img, x, y, cw, ch, c);
         const std::string text = format_value(v);
-        if (cell >= 10 && text_width(text) <= cell - 2) {
+        if (ch >= 10 && text_width(text) <= cw - 2) {
             const bool light = 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b > 128;
-            draw_text(img, x + (cell - text_width(text)) / 2, y + (cell - text_height(text)) / 2,
-                      text, light ? Rgb8{0, 0, 0} : Rgb8{255, 255, 255});
+            draw_text(img, x + (cw - text_width(text)) / 2, y + (ch - text_height(text)) / 2, text,
+                      light ? Rgb8{0, 0, 0} : Rgb8{255, 255, 255});
         }
     }
-    if (cell >= 6)
+    if (cw >= 6)
         for (int i = 0; i <= nx; ++i)
-            fill_rect(img, kLeft + i * cell, kTop, 1, plan_h, Rgb8{255, 255, 255});
-    if (cell >= 6)
+            fill_rect(img, kLeft + i * cw, kTop, 1, plan_h, Rgb8{255, 255, 255});
+    if (ch >= 6)
         for (int j = 0; j <= ny; ++j)
-            fill_rect(img, kLeft, kTop + j * cell, plan_w, 1, Rgb8{255, 255, 255});
+            fill_rect(img, kLeft, kTop + j * ch, plan_w, 1, Rgb8{255, 255, 255});
     draw_rect(img, kLeft - 1, kTop - 1, plan_w + 2, plan_h + 2, ink);
 
     // Luminaires in front of the plane, over the grid: a cross and the name.

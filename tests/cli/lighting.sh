@@ -73,6 +73,18 @@ assert [l['name'] for l in s['luminaires']] == ['D1', 'P1'], s['luminaires']
 assert s['cameras'] == ['door'], s['cameras']
 "
 
+# Two included files: groups of the same name merge; paths are relative to the JSON file.
+mkdir -p sub
+cp "$SRC/tests/data/lighting/black_floor."* sub/
+printf 'mtllib black_floor.mtl\nv 4 0 0\nv 8 0 0\nv 8 0 4\nv 4 0 4\ng floor\nusemtl black\nf 4 3 2 1\n' > sub/more.obj
+printf '{"include": ["sub/black_floor.obj", "sub/more.obj"], "luminaires": [{"candela": 10, "position": [4, 2, 2]}]}\n' > two.json
+"$HEMIRAD" scene two.json --json > two_scene.json
+python3 -c "
+import json; s = json.load(open('two_scene.json'))
+assert [(g['name'], g['polygons'], g['area']) for g in s['groups']] == [('floor', 2, 32)], s['groups']
+assert s['luminaires'][0]['name'] == 'L1' and s['warnings'] == [], s
+"
+
 # Save after the first shot (a luminaire's), resume: the same grid as an uninterrupted run.
 "$HEMIRAD" solve "$room" --quiet --max-shots 1 --save-solution s.bin
 "$HEMIRAD" solve "$room" --quiet --resume s.bin --grid floor:9x9 --grid-out g2.csv --lux
