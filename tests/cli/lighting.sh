@@ -77,10 +77,10 @@ assert s['cameras'] == ['door'], s['cameras']
 mkdir -p sub
 cp "$SRC/tests/data/lighting/black_floor."* sub/
 printf 'mtllib black_floor.mtl\nv 4 0 0\nv 8 0 0\nv 8 0 4\nv 4 0 4\ng floor\nusemtl black\nf 4 3 2 1\n' > sub/more.obj
-printf '{"include": ["sub/black_floor.obj", "sub/more.obj"], "luminaires": [{"candela": 10, "position": [4, 2, 2]}]}\n' > two.json
-"$HEMIRAD" scene two.json --json > two_scene.json
+printf '{"include": ["sub/black_floor.obj", "sub/more.obj"], "luminaires": [{"candela": 10, "position": [4, 2, 2]}]}\n' > merged.json
+"$HEMIRAD" scene merged.json --json > merged_scene.json
 python3 -c "
-import json; s = json.load(open('two_scene.json'))
+import json; s = json.load(open('merged_scene.json'))
 assert [(g['name'], g['polygons'], g['area']) for g in s['groups']] == [('floor', 2, 32)], s['groups']
 assert s['luminaires'][0]['name'] == 'L1' and s['warnings'] == [], s
 "
