@@ -208,15 +208,16 @@ private:
     }
 
     // The stand-in shooter of a luminaire's hemicube along side * aim: a square of side 1 %
-    // of the scene's diagonal centred on the luminaire (its size sets only the near plane),
-    // of no polygon.
+    // of the scene's diagonal centred on the luminaire (its size sets only the near plane; its
+    // first edge, the frame), of no polygon, with a corner count of 0 so that the fragment
+    // shader computes no polygon form factor (its loop over the shooter's corners is empty).
     Shooter point_shooter(const Luminaire& l, double side) const {
         Shooter s;
         s.address = {kNoShooterPolygon, 0, 0};
         s.normal = side * l.aim;
         const double h = 0.005 * std::max(scene_->bounds().diagonal(), 1e-300);
         const dvec3 a = h * l.c0, b = h * glm::cross(s.normal, l.c0);
-        s.geometry.count = 4;
+        s.geometry.count = 0;
         s.geometry.corners = {l.position - a - b, l.position + a - b, l.position + a + b,
                               l.position - a + b};
         s.geometry.centre = l.position;
