@@ -68,7 +68,7 @@ struct Scene {
     dvec3 luminaire_power() const; ///< of the luminaires: sum of lumens/683, equal RGB [W]
     double total_area() const;
     double max_reflectance() const;    ///< max over materials in use and channels
-    /// Of the polygons (and the luminaires' positions).
+    /// Of the polygons (luminaires left out: the automatic patch size derives from it).
     Bounds bounds() const;
     std::size_t triangle_count() const;
     std::size_t quad_count() const;

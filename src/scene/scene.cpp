@@ -170,7 +170,6 @@ Bounds Scene::bounds() const {
     Bounds b;
     for (const Polygon& q : polygons)
         for (int i = 0; i < q.count; ++i) b.extend(q.v[i]);
-    for (const Luminaire& l : luminaires) b.extend(l.position);
     return b;
 }
 
