@@ -5,6 +5,7 @@
 #include "hemirad/error.h"
 #include "hemirad/grid.h"
 #include "hemirad/hierarchy.h"
+#include "output/draw.h"
 
 using namespace hemirad;
 
@@ -100,6 +101,25 @@ TEST(Grid, LinearIrradianceStatistics) {
     EXPECT_NEAR(r.Y_min, 1.125, 1e-5);
     EXPECT_NEAR(r.Y_max, 2.875, 1e-5);
     EXPECT_NEAR(r.U0, r.Y_min / r.Y_avg, 1e-12);
+    EXPECT_NEAR(r.min_over_max, r.Y_min / r.Y_max, 1e-12);
+    const std::string line = grid_summary(r, false);
+    EXPECT_NE(line.find("floor 8x8: Emin 1.125 W/unit²"), std::string::npos) << line;
+    EXPECT_NE(line.find("Emin/Emax 0.391"), std::string::npos) << line;
+    EXPECT_NE(grid_json(r, true).dump().find("\"Emin/Emax\": 0.39"), std::string::npos);
+
+    // The plan: the L's missing quarter grey, the brightest cell viridis' top colour, a
+    // luminaire over the grid marked in red.
+    Luminaire l;
+    l.name = "L1";
+    l.position = {0.5, 0.5, 1};
+    const Image8 img = grid_plan_image(r, false, {l});
+    ASSERT_FALSE(img.empty());
+    // A pixel near the top-left corner of cell (i, j): 2 x 2 units in 8 x 8 cells of 720 / 8
+    // = 90 pixels, capped to 72, from (10, 34); row j = 0 at the bottom.
+    const auto cell = [&](int i, int j) { return img.get(10 + i * 72 + 3, 34 + (7 - j) * 72 + 3); };
+    EXPECT_EQ(cell(6, 6), (Rgb8{170, 170, 170}));       // x, y in (1, 2): no polygon
+    EXPECT_EQ(cell(7, 0), false_colour(1.0));           // x = 1.9375: the maximum
+    EXPECT_EQ(img.get(10 + 72 * 2, 34 + 72 * 6), (Rgb8{228, 26, 28})); // the cross at (0.5, 0.5)
 }
 
 TEST(Grid, RefusesUnknownAndNonPlanarGroups) {

@@ -44,6 +44,21 @@ public:
     /// Appends to `links` one entry per receiving node visible from the shooter (links is
     /// cleared first). Receivers on the shooter's own polygon are never returned.
     virtual void shoot(const Shooter& shooter, std::vector<Link>& links) = 0;
+    /// A point shot: the luminaire (photometry.h) shoots from its position over the whole
+    /// sphere, with the same linking as shoot(). Appends one entry per receiving node visible
+    /// from the luminaire (links is cleared first), its values per watt the luminaire emits
+    /// per channel, P = luminaire.power():
+    ///   ff = ff_analytic = E_j / P = I(d) cos(theta_j) / (683 r^2 P) at the node's centre
+    ///   [unit^-2] (exact for an unoccluded node), ff_pixel = the flux through the node's
+    ///   hemicube pixels / (P A_j) (GPU providers), and ff as shoot() picks it (hybrid: the
+    ///   pixel value, clamped to the analytic one, for partially occluded nodes).
+    /// So sum_j ff A_j is the fraction of the luminaire's power received (its row sum).
+    /// Default: InputError (the provider cannot shoot luminaires).
+    virtual void shoot_point(const Luminaire& luminaire, std::vector<Link>& links) {
+        (void)luminaire;
+        links.clear();
+        throw InputError("form-factor method " + name() + " cannot shoot point luminaires");
+    }
     /// When true, receivers are linked at their leaves (depth of the Discretisation);
     /// used by the matrix solver and by tests. Default: adaptive linking.
     virtual void set_link_at_leaves(bool leaves) { link_at_leaves_ = leaves; }

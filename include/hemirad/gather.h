@@ -13,6 +13,10 @@
 // penumbrae and contact shadows at the point are resolved to a sixteenth of a coarse cell,
 // whatever the leaf size of the surface the point lies on.
 //
+// Point luminaires (photometry.h) add their exact direct irradiance I(d) cos(theta) / (683 r^2)
+// where one shadow ray from the point to the luminaire arrives (a point source casts hard
+// shadows: one ray is exact).
+//
 // Indirect: `rays` cosine-distributed directions, stratified over an m x m grid of the unit
 // square (m = round(sqrt(rays))), each with one jittered sample. A ray that reaches the front
 // of polygon Q at y brings the solved reflected radiosity rho_Q * H(y) (H interpolated between
@@ -94,6 +98,8 @@ class FinalGather {
     dvec3 reflected(const dvec3& origin, const dvec3& dir, std::uint32_t self, Rng& rng,
                     bool near_path) const;
     dvec3 direct_sample(const dvec3& y, const dvec3& n, std::uint32_t self, Rng& rng) const;
+    /// The luminaires' direct irradiance at x (one shadow ray each), RGB.
+    dvec3 luminaires(const dvec3& x, const dvec3& n, std::uint32_t self) const;
 
     const Hierarchy* h_;
     GatherOptions options_;

@@ -20,12 +20,11 @@
 
 #include "hemirad/gather.h"
 #include "hemirad/hierarchy.h"
+#include "hemirad/image.h"
 #include "hemirad/json.h"
+#include "hemirad/photometry.h"
 
 namespace hemirad {
-
-/// Luminous efficacy used for lux [lm/W].
-inline constexpr double kLumensPerWatt = 683.0;
 
 /// Most points in one grid (NX * NY).
 inline constexpr long kMaxGridPoints = 4'000'000;
@@ -56,6 +55,7 @@ struct GridResult {
     /// Statistics over the evaluated points. Luminance Y = 0.2126 R + 0.7152 G + 0.0722 B.
     double Y_min = 0, Y_avg = 0, Y_max = 0;
     double U0 = 0;                  ///< Y_min / Y_avg (0 when Y_avg is 0)
+    double min_over_max = 0;        ///< Y_min / Y_max, "Emin/Emax" (0 when Y_max is 0)
     dvec3 E_min{0.0}, E_avg{0.0}, E_max{0.0}; ///< per channel
 };
 
@@ -66,9 +66,22 @@ struct GridResult {
 GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec,
                          const FinalGather* gather = nullptr);
 
-/// The report entry: {group, nx, ny, points, skipped, E_min, E_avg, E_max, U0 (luminance,
-/// W unit^-2), E_rgb {min, avg, max}, and with lux: lux {min, avg, max}}.
+/// The report entry: {group, nx, ny, points, skipped, E_min, E_avg, E_max (luminance,
+/// W unit^-2), U0 = Emin/Eavg, "Emin/Emax", E_rgb {min, avg, max}, and with lux:
+/// lux {min, avg, max}}.
 Json grid_json(const GridResult& g, bool lux);
+
+/// One line for people: "floor 9x9: Emin 96.2 lx, Eavg 161.9 lx, Emax 243 lx, U0 = Emin/Eavg
+/// 0.594, Emin/Emax 0.396" (in W/unit² without lux).
+std::string grid_summary(const GridResult& g, bool lux);
+
+/// A false-colour plan view of a grid (`hemirad solve --grid-png DIR`): one cell per point, to
+/// scale, seen from the front of the surface (u to the right, v up), coloured by its value
+/// (viridis, 0 to the grid's maximum) with the value printed in it when the cell is large
+/// enough; points on no polygon grey; the positions of the luminaires in front of the plane
+/// within the grid marked with a cross and their name; a title with Emin, Eavg, Emax, U0 and
+/// Emin/Emax and a colour legend. Values in lux with `lux`, else W/unit².
+Image8 grid_plan_image(const GridResult& g, bool lux, const std::vector<Luminaire>& luminaires);
 
 /// CSV of all grids: group,i,j,x,y,z,E_r,E_g,E_b,E_Y[,lux]; a skipped point has empty values.
 std::string grids_csv(const std::vector<GridResult>& grids, bool lux);

@@ -12,8 +12,8 @@
 // so E satisfies E(x) = E_direct(x) + integral rho(y)/pi E(y) cos(theta) dw: every bounce is
 // counted (no truncation unless max_bounces asks for it). The estimator is a path tracer
 // with next-event estimation and multiple importance sampling (Veach 1997, ch. 9, the
-// balance heuristic, eq. 9.10) of the emitted part, and Russian roulette; path_tracer.cpp
-// writes out the maths.
+// balance heuristic, eq. 9.10) of the emitted part, and Russian roulette; point luminaires
+// (photometry.h) by next-event estimation at every vertex; path_tracer.cpp writes out the maths.
 #pragma once
 
 #include <cstddef>

@@ -13,11 +13,21 @@ namespace hemirad {
 
 /// The JSON report of `hemirad solve --report` (keys: polygons, leaf_patches, shots, seconds,
 /// emitted_power, unshot_fraction, error_bound, converged, row_sum{min,mean,max}, groups[...]
-/// with name, area, E_avg, E_min, E_max — incident irradiance, RGB).
+/// with name, area, E_avg, E_min, E_max — incident irradiance, RGB — and flux (E times area,
+/// RGB, W) and lumens (683 x its luminance: the lumens reaching the group); with luminaires,
+/// installed_lumens and the luminaire schedule, luminaires[...] (luminaire_json)).
 Json solve_report(Solver& solver);
 /// The same with calculation grids (grid.h): adds `grids: [grid_json(...)]`, and with `lux`
 /// photometric values (lux, for scenes in metres; weighting in grid.h).
 Json solve_report(Solver& solver, const std::vector<GridResult>& grids, bool lux);
+
+/// A luminaire's schedule entry: name, kind (ies, candela, spot), file (ies), position, aim,
+/// rotation [deg], multiplier, lumens (integrated from the distribution, multiplier applied),
+/// rated_lumens (the IES file's lamp lumens times multiplier; absent for absolute photometry and
+/// other kinds), max_candela, symmetry.
+Json luminaire_json(const Luminaire& l);
+/// {installed_lumens, luminaires: [luminaire_json...]} of a scene (both present, possibly 0/[]).
+Json luminaire_schedule(const Scene& scene);
 
 struct Probe {
     dvec3 position{0.0}, normal{0.0};

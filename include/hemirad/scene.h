@@ -10,6 +10,8 @@
 
 #include <glm/glm.hpp>
 
+#include "hemirad/photometry.h"
+
 namespace hemirad {
 
 using dvec3 = glm::dvec3;
@@ -54,12 +56,19 @@ struct Scene {
     std::vector<std::string> groups;   ///< surface-group names (OBJ g/o, else material name)
     /// cameras[0] is the default view; without one, default_camera() (render.h) frames the scene
     std::vector<Camera> cameras;
+    /// Point-source luminaires (photometry.h; from a SCENE.json file): shot by the solver like
+    /// emitting polygons, their direct light gathered exactly at points.
+    std::vector<Luminaire> luminaires;
     std::vector<std::string> warnings; ///< things the loader fixed or dropped, for reports
 
     const Material& material_of(const Polygon& p) const { return materials[p.material]; }
-    dvec3 emitted_power() const;       ///< sum of pi*Ke*area [W]
+    /// Everything emitted [W]: surface_power() + luminaire_power().
+    dvec3 emitted_power() const;
+    dvec3 surface_power() const;   ///< of the polygons: sum of pi*Ke*area [W]
+    dvec3 luminaire_power() const; ///< of the luminaires: sum of lumens/683, equal RGB [W]
     double total_area() const;
     double max_reflectance() const;    ///< max over materials in use and channels
+    /// Of the polygons (luminaires left out: the automatic patch size derives from it).
     Bounds bounds() const;
     std::size_t triangle_count() const;
     std::size_t quad_count() const;
@@ -80,6 +89,9 @@ struct AddResult {
 };
 AddResult add_polygon(Scene& scene, const std::vector<dvec3>& corners, std::uint32_t material,
                       std::uint32_t group, double planarity_tolerance = 1e-6);
+
+/// The warning finish_scene() adds when nothing emits (its start, for filtering).
+inline constexpr const char* kNoEmitterWarning = "no surface emits light";
 
 /// Checks a finished scene: at least one polygon (else InputError naming `origin`); adds a
 /// warning when nothing emits. Called by every loader. Adds no camera.

@@ -21,9 +21,34 @@ struct ObjOptions {
     double max_reflectance = 0.98;
 };
 
-/// Loads "NAME" (a built-in scene) or a path to an OBJ file. Throws InputError on bad input.
+/// Loads "NAME" (a built-in scene), a path to an OBJ file, or a SCENE.json project file (a
+/// path ending in .json: load_scene_json). Throws InputError on bad input.
 Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin = {},
                  const ObjOptions& obj = {});
+
+/// A SCENE.json project file assembles a scene (paths relative to the JSON file's folder):
+///
+///   {"include": ["room.obj"],                          geometry: OBJ files, at least one
+///    "luminaires": [                                    point sources (photometry.h)
+///      {"ies": "downlight.ies", "position": [2, 2.8, 2], "aim": [0, -1, 0],
+///       "rotation": 0, "multiplier": 1, "name": "D1"},
+///      {"candela": 500, "position": [1, 2, 1]},         isotropic, I [cd]
+///      {"spot": {"candela": 2000, "cone": 20, "falloff": 10}, "position": [...], "aim": [...]}],
+///    "cameras": [{"name": "door", "eye": [0, 1.6, 0], "target": [2, 1, 2], "up": [0, 1, 0],
+///                 "fov": 60}]}
+///
+/// A luminaire is exactly one of `ies`, `candela`, `spot`; `position` is required; `aim` (the
+/// nadir, gamma = 0; default straight down, [0, -1, 0]), `rotation` (of the C planes about the
+/// aim, degrees, counterclockwise seen from above; default 0), `multiplier` (> 0, default 1)
+/// and `name` (default L1, L2, ...) are optional. A spot has `candela` within `cone` degrees
+/// of the aim, falling linearly to 0 over `falloff` more degrees (default 0). A camera needs
+/// `eye` and `target`; `up` defaults to [0, 1, 0], `fov` (vertical, degrees) to 40; the first
+/// camera is the default view. Groups of the same name in several files are one group.
+/// Unknown keys are errors naming the key; every error names the file and the line. Lengths
+/// are in the OBJ's units, which must be metres for lux.
+Scene load_scene_json(const std::string& path, const ObjOptions& obj = {});
+/// Whether a scene argument names a SCENE.json file (ends in .json, any case).
+bool is_scene_json(const std::string& path);
 
 /// Loads an OBJ file and the MTL files it names (obj_loader.cpp lists what is tolerated, with a
 /// warning each, and what is an error). Throws InputError naming file, line and value.

@@ -19,6 +19,8 @@
 //             P*25  per polygon: f64[3] unshot power, u8 dirty
 //             N     per node: u8 enclosed
 //             ...   u32 count, then f64 per value: provider state (FormFactorProvider)
+//             ...   u32 luminaire count L, then L*24: f64[3] unshot power per luminaire
+//                   (version 2; version 1 files, without it, are read as L = 0)
 //     end-8   8     u64 FNV-1a 64 hash of every byte before it (detects corruption)
 //
 // (str = u32 byte length + bytes.) A file that is truncated, corrupt, of another version or
@@ -34,7 +36,7 @@
 
 namespace hemirad {
 
-inline constexpr std::uint32_t kSolutionFileVersion = 1;
+inline constexpr std::uint32_t kSolutionFileVersion = 2;
 
 /// An option that affects results, as (command-line name, exact value text).
 using SolutionOption = std::pair<std::string, std::string>;

@@ -56,13 +56,17 @@ struct SolverOptions {
 /// One shot, as reported after it (also one line of --log).
 struct ShotRecord {
     long shot = 0;              ///< 1-based
+    /// The luminaire shot (index into Scene::luminaires), or -1 when a patch shot: then
+    /// `shooter` is the patch (for a luminaire it is {kNoPolygon-like 0xFFFFFFFF, 0, 0}).
+    int luminaire = -1;
     PatchAddress shooter;
     double shooter_power = 0;   ///< unshot power shot, sum over RGB [W]
     std::size_t links = 0;
     int refined = 0;            ///< shooters replaced by their children before this shot
                                 ///< (enclosed centre, or parallax above the limit)
     double parallax = -1;       ///< the shooter's parallax fraction (-1: not measured, a leaf)
-    double row_sum = 0;         ///< sum_j F(j->S) A_j / A_S before any guard (1 if closed)
+    double row_sum = 0;         ///< sum_j F(j->S) A_j / A_S before any guard (1 if closed);
+                                ///< for a luminaire, the fraction of its power received
     bool row_guarded = false;   ///< the guard rescaled this row
     double t_select = 0, t_push_pull = 0, t_form_factors = 0, t_update = 0; ///< [s]
     std::vector<FormFactorProvider::Timing> ff_phases; ///< the provider's own split
@@ -97,8 +101,14 @@ public:
     double seconds() const; ///< wall time spent in step() so far
 
     /// Error bound in the power (L1, area-weighted) norm, relative to the emitted power:
-    /// max over channels of U_c / ((1 - rho_max) * Phi_c) (paper 001 eq. 27 and 33).
+    /// max over channels of U_c / ((1 - rho_max) * Phi_c) (paper 001 eq. 27 and 33). U and Phi
+    /// count the luminaires' power (a luminaire not yet shot is all unshot).
     double error_bound() const;
+    /// Unshot power, RGB [W]: the patches' plus the luminaires' not yet shot.
+    dvec3 unshot_power() const;
+    /// Per luminaire (Scene::luminaires), its unshot power, RGB [W]: all of it until it has
+    /// shot (once, over the whole sphere), then 0.
+    const std::vector<dvec3>& luminaire_unshot() const { return luminaire_unshot_; }
     double unshot_fraction() const;
     dvec3 emitted_power() const { return emitted_; }
     dvec3 absorbed_power() const { return absorbed_; } ///< (1-rho)*received, summed [W]
@@ -140,6 +150,7 @@ public:
         std::vector<std::uint8_t> dirty;      ///< per polygon, needs a push-pull
         std::vector<std::uint8_t> enclosed;   ///< per node, a view code (see Solver::view_)
         std::vector<double> provider;         ///< FormFactorProvider::save_state()
+        std::vector<dvec3> luminaires;        ///< per luminaire, unshot power [W]
     };
     State save_state() const;
     /// Restores a state saved by a solver with the same scene and options. Throws InputError
@@ -149,6 +160,11 @@ public:
 private:
     void init();
     PatchAddress select_shooter(std::uint32_t polygon);
+    void shoot_luminaire(std::size_t k, ShotRecord& rec);
+    /// Delivers the links of a shot of unshot radiosity dB from a shooter of area A_S (a
+    /// luminaire: its power, A_S = 1): row sum, guard, receive, absorbed and escaped power.
+    void deliver(const dvec3& dB, double area_s, ShotRecord& rec);
+    void finish_shot(ShotRecord& rec, std::chrono::steady_clock::time_point start);
     void check_stop();
 
     const Scene* scene_;
@@ -156,6 +172,7 @@ private:
     Hierarchy hierarchy_;
     std::unique_ptr<FormFactorProvider> provider_;
     std::vector<Link> links_;
+    std::vector<dvec3> luminaire_unshot_;
     bool must_split(std::uint64_t node) const;
 
     /// Per node, what its hemicube showed, once measured: 0 not yet, 1 enclosed centre (always

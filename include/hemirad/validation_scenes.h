@@ -34,6 +34,11 @@ struct CieRoom {
 constexpr HorizontalRect kCie53Source{1.5, 2.5, 1.5, 2.5, CieRoom::height};
 Scene make_cie53_area_source(double exitance = 1000.0);
 
+/// The CIE 171 room lit by point-source luminaires (photometry.h) only: every surface of
+/// reflectance `rho` (0: black, for direct light only), the ceiling whole; the luminaires are
+/// oriented (Luminaire::orient). Groups: floor, wall_x0, wall_x1, wall_z0, wall_z1, ceiling.
+Scene make_cie_room(double rho, const std::vector<Luminaire>& luminaires);
+
 /// CIE 171 tests 5.6 and 5.7: light reflected from a uniformly lit diffuse floor. The
 /// floor's reflected exitance rho*E_floor is modelled as emission (a Lambertian emitter of
 /// exitance `floor_exitance`), every other surface black, so a point on a wall or the

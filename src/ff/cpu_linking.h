@@ -60,6 +60,11 @@ class CpuProvider : public FormFactorProvider {
     CpuProvider(const Scene& scene, const Discretisation& disc, const CpuProviderOptions& o,
                 std::shared_ptr<const Bvh> bvh);
     std::vector<Timing> last_timings() const override { return timings_; }
+    /// A point shot, the same for every CPU provider: adaptive (or leaf) linking as for a
+    /// shooter at the luminaire's position, over every polygon whose front faces it; per node
+    /// the analytic E_j / P at its centre (form_factors.h) if one ray from the centre to the
+    /// luminaire arrives, else nothing.
+    void shoot_point(const Luminaire& luminaire, std::vector<Link>& links) override;
 
   protected:
     /// Checks the shooter, clears `links`; throws InputError for a bad address.

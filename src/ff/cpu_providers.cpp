@@ -1,6 +1,7 @@
 // CPU form-factor providers: the factory and the linking code they share (cpu_linking.h).
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -156,6 +157,36 @@ void CpuProvider::begin_shot(const Shooter& s, std::vector<Link>& links) const {
           << s.address.index << ") is not a patch of the scene";
         throw InputError(m.str());
     }
+}
+
+void CpuProvider::shoot_point(const Luminaire& l, std::vector<Link>& links) {
+    const auto start = std::chrono::steady_clock::now();
+    links.clear();
+    const double power = l.power();
+    if (!(power > 0)) return;
+    Shooter at; // only its centre is used by the linking
+    at.geometry.centre = l.position;
+    for_each_polygon(
+        scene_.polygons.size(), threads_,
+        [&](std::uint32_t r, std::vector<Link>& out) {
+            const Polygon& poly = scene_.polygons[r];
+            if (!(glm::dot(poly.normal, l.position - poly.v[0]) > 0)) return; // faces away
+            std::vector<ReceiverNode> nodes;
+            receiver_nodes(poly, r, depth_of(r), link_at_leaves_, options_.link_angle, at, nodes);
+            for (const ReceiverNode& node : nodes) {
+                const dvec3& x = node.geometry.centre;
+                const double e = l.irradiance(x, poly.normal) / power;
+                if (!(e > 0)) continue;
+                const dvec3 origin = x + poly.normal * (1e-7 * std::sqrt(node.geometry.area));
+                if (bvh_->occluded(origin, l.position, r, kNoPolygon)) continue;
+                Link link;
+                link.receiver = node.address;
+                link.ff = link.ff_analytic = float(e);
+                if (link.ff > 0) out.push_back(link);
+            }
+        },
+        links);
+    timings_ = {{"form_factors", seconds_since(start)}};
 }
 
 } // namespace cpu

@@ -7,10 +7,40 @@
 #include <sstream>
 
 #include "hemirad/error.h"
+#include "hemirad/image.h"
 #include "hemirad/readout.h"
 #include "output/atomic_file.h"
 
 namespace hemirad {
+
+Json luminaire_json(const Luminaire& l) {
+    Json o = Json::object();
+    o["name"] = l.name;
+    o["kind"] = l.kind;
+    if (!l.file.empty()) o["file"] = l.file;
+    o["position"] = l.position;
+    o["aim"] = l.aim;
+    o["rotation"] = l.rotation;
+    o["multiplier"] = l.multiplier;
+    o["lumens"] = l.lumens();
+    if (l.rated_lumens > 0) o["rated_lumens"] = l.rated_lumens;
+    o["max_candela"] = l.multiplier * l.distribution.max_candela();
+    o["symmetry"] = to_string(l.distribution.symmetry);
+    return o;
+}
+
+Json luminaire_schedule(const Scene& scene) {
+    Json o = Json::object();
+    double total = 0;
+    Json list = Json::array();
+    for (const Luminaire& l : scene.luminaires) {
+        total += l.lumens();
+        list.push_back(luminaire_json(l));
+    }
+    o["installed_lumens"] = total;
+    o["luminaires"] = list;
+    return o;
+}
 
 Json solve_report(Solver& solver) {
     const Scene& scene = solver.scene();
@@ -48,9 +78,17 @@ Json solve_report(Solver& solver) {
         o["E_avg"] = gi.E_avg;
         o["E_min"] = gi.E_min;
         o["E_max"] = gi.E_max;
+        const dvec3 flux = gi.E_avg * gi.area;
+        o["flux"] = flux;
+        o["lumens"] = kLumensPerWatt * luminance(flux.x, flux.y, flux.z);
         groups.push_back(o);
     }
     j["groups"] = groups;
+    if (!scene.luminaires.empty()) {
+        Json sched = luminaire_schedule(scene);
+        j["installed_lumens"] = sched["installed_lumens"];
+        j["luminaires"] = sched["luminaires"];
+    }
     return j;
 }
 

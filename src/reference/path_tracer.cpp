@@ -35,6 +35,10 @@
 // Every channel of rho/q is <= 1, so the path's throughput beta (the product of rho/q)
 // never grows, and a path ends after a geometric number of bounces (mean <= 1/(1 - rho_max)).
 //
+// Point luminaires (photometry.h) are delta lights: at every vertex each adds
+// I(w) cos(theta_x) / (683 r^2) when the segment to it is unoccluded (next-event estimation
+// only; no cosine ray can hit a point).
+//
 // A sample of E(x) is then sum over vertices k of beta_k * (the I_e terms at vertex k).
 // max_bounces = m > 0 stops the path after m reflections (light reflected at most m times).
 #include "hemirad/reference.h"
@@ -139,7 +143,7 @@ class PathTracer {
     /// The light-sampling half of I_e at x: sum over the sampled emitters of
     /// Ke cos(theta_x) / (p_l + p_b) for unoccluded points facing x.
     dvec3 light_samples(const dvec3& x, const dvec3& n, std::uint32_t ignore, Rng& rng) const {
-        dvec3 sum(0.0);
+        dvec3 sum = point_lights(x, n, ignore);
         if (emitters_.empty()) return sum;
         if (sum_all_) {
             for (const std::uint32_t e : emitters_) sum += light_sample(x, n, ignore, e, rng);
@@ -148,7 +152,18 @@ class PathTracer {
         const double u = rng.uniform() * cdf_.back();
         const std::size_t k = std::min<std::size_t>(
             std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin(), cdf_.size() - 1);
-        return light_sample(x, n, ignore, emitters_[k], rng);
+        return sum + light_sample(x, n, ignore, emitters_[k], rng);
+    }
+
+    /// Point luminaires (delta lights: no ray can hit one, so light sampling is their only
+    /// technique, weight 1): sum over all of I(w) cos(theta_x) / (683 r^2) if unoccluded.
+    dvec3 point_lights(const dvec3& x, const dvec3& n, std::uint32_t ignore) const {
+        double e = 0;
+        for (const Luminaire& l : scene_.luminaires) {
+            const double el = l.irradiance(x, n);
+            if (el > 0 && !bvh_.occluded(x, l.position, ignore, kNoPolygon)) e += el;
+        }
+        return dvec3(e);
     }
 
     dvec3 light_sample(const dvec3& x, const dvec3& n, std::uint32_t ignore, std::uint32_t e,

@@ -655,6 +655,7 @@ Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin,
         throw InputError(name_or_path, 0,
                          std::string("no such file, and not a built-in scene (") + builtin_names() +
                              ")");
+    if (is_scene_json(name_or_path)) return load_scene_json(name_or_path, obj);
     return load_obj(name_or_path, obj);
 }
 

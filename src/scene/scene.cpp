@@ -127,14 +127,28 @@ void finish_scene(Scene& s, const std::string& origin) {
         throw InputError(origin, 0, "the scene has no polygons (nothing to solve)");
     const dvec3 power = s.emitted_power();
     if (!(power.x > 0 || power.y > 0 || power.z > 0))
-        s.warnings.push_back("no surface emits light (every Ke is 0): the solution will be black");
+        s.warnings.push_back(s.luminaires.empty()
+                                 ? std::string(kNoEmitterWarning) +
+                                       " (every Ke is 0): the solution will be black"
+                                 : std::string(kNoEmitterWarning) +
+                                       ", nor does a luminaire: the solution will be black");
     // No camera is made up here: default_camera() (render.h) frames a scene without one.
 }
 
 dvec3 Scene::emitted_power() const {
+    return surface_power() + luminaire_power();
+}
+
+dvec3 Scene::surface_power() const {
     dvec3 p(0.0);
     for (const Polygon& q : polygons) p += materials[q.material].exitance() * q.area;
     return p;
+}
+
+dvec3 Scene::luminaire_power() const {
+    double w = 0;
+    for (const Luminaire& l : luminaires) w += l.power();
+    return dvec3(w);
 }
 
 double Scene::total_area() const {
@@ -188,6 +202,17 @@ std::uint64_t Scene::content_hash() const {
     for (const Material& m : materials) {
         mix(&m.rho, sizeof m.rho);
         mix(&m.Ke, sizeof m.Ke);
+    }
+    // Luminaires change the solution: their placement and distribution count (none: the hash
+    // of a scene without luminaires is what it always was).
+    for (const Luminaire& l : luminaires) {
+        for (const dvec3* v : {&l.position, &l.aim, &l.c0}) mix(v, sizeof(dvec3));
+        mix(&l.multiplier, sizeof l.multiplier);
+        const CandelaDistribution& d = l.distribution;
+        mix(d.gamma.data(), d.gamma.size() * sizeof(double));
+        mix(d.c.data(), d.c.size() * sizeof(double));
+        mix(d.candela.data(), d.candela.size() * sizeof(double));
+        mix(&d.symmetry, sizeof d.symmetry);
     }
     return h;
 }

@@ -100,6 +100,16 @@ Scene make_cie53_area_source(double exitance) {
     return b.finish("cie53", dvec3(2, 1.5, -3), dvec3(2, 1.5, 2));
 }
 
+Scene make_cie_room(double rho, const std::vector<Luminaire>& luminaires) {
+    if (!(rho >= 0 && rho < 1)) throw InputError("cie room: rho must be in [0, 1)");
+    Builder b;
+    const auto m = b.material(rho > 0 ? "grey" : "black", rho);
+    b.room(W, H, D, m, m, m, nullptr, false);
+    b.scene.luminaires = luminaires;
+    for (Luminaire& l : b.scene.luminaires) l.orient();
+    return b.finish("cie_room", dvec3(2, 1.5, -3), dvec3(2, 1.5, 2));
+}
+
 Scene make_cie56_lit_floor(double floor_exitance, bool obstruction) {
     if (!(floor_exitance > 0)) throw InputError("cie56: floor exitance must be > 0");
     Builder b;

@@ -95,7 +95,16 @@ dvec3 FinalGather::direct(const dvec3& x, const dvec3& n, std::uint32_t self,
         }
         E += f * scene.material_of(P).exitance();
     }
-    return E;
+    return E + luminaires(x, n, self);
+}
+
+dvec3 FinalGather::luminaires(const dvec3& x, const dvec3& n, std::uint32_t self) const {
+    double e = 0;
+    for (const Luminaire& l : h_->scene().luminaires) {
+        const double el = l.irradiance(x, n);
+        if (el > 0 && !bvh_->occluded(x, l.position, self, kNoPolygon)) e += el;
+    }
+    return dvec3(e);
 }
 
 dvec3 FinalGather::direct_sample(const dvec3& y, const dvec3& n, std::uint32_t self,
@@ -112,7 +121,7 @@ dvec3 FinalGather::direct_sample(const dvec3& y, const dvec3& n, std::uint32_t s
         if (bvh_->occluded(y, area_point(P.v.data(), P.count, pick, u1, u2), self, e)) continue;
         E += F * scene.material_of(P).exitance();
     }
-    return E;
+    return E + luminaires(y, n, self);
 }
 
 dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_t self, Rng& rng,

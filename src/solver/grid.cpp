@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "hemirad/error.h"
@@ -194,6 +195,7 @@ GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec, const FinalGa
         r.E_avg = e_sum / double(r.evaluated);
     }
     r.U0 = r.Y_avg > 0 ? r.Y_min / r.Y_avg : 0.0;
+    r.min_over_max = r.Y_max > 0 ? r.Y_min / r.Y_max : 0.0;
     return r;
 }
 
@@ -208,6 +210,7 @@ Json grid_json(const GridResult& g, bool lux) {
     o["E_avg"] = g.Y_avg;
     o["E_max"] = g.Y_max;
     o["U0"] = g.U0;
+    o["Emin/Emax"] = g.min_over_max;
     o["E_rgb"]["min"] = g.E_min;
     o["E_rgb"]["avg"] = g.E_avg;
     o["E_rgb"]["max"] = g.E_max;
@@ -219,6 +222,18 @@ Json grid_json(const GridResult& g, bool lux) {
     o["width"] = g.width;
     o["height"] = g.height;
     return o;
+}
+
+std::string grid_summary(const GridResult& g, bool lux) {
+    const double k = lux ? kLumensPerWatt : 1.0;
+    const char* unit = lux ? " lx" : " W/unit²";
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "%s %dx%d: Emin %.4g%s, Eavg %.4g%s, Emax %.4g%s, U0 = Emin/Eavg %.3f, "
+                  "Emin/Emax %.3f",
+                  g.spec.group.c_str(), g.spec.nx, g.spec.ny, k * g.Y_min, unit, k * g.Y_avg, unit,
+                  k * g.Y_max, unit, g.U0, g.min_over_max);
+    return buf;
 }
 
 std::string grids_csv(const std::vector<GridResult>& grids, bool lux) {

@@ -250,6 +250,8 @@ std::string solution_bytes(const Solver& solver) {
     for (std::uint8_t e : st.enclosed) w.u8(e);
     w.u32(std::uint32_t(st.provider.size()));
     for (double v : st.provider) w.f64(v);
+    w.u32(std::uint32_t(st.luminaires.size()));
+    for (const dvec3& u : st.luminaires) w.dvec(u);
     w.u64(fnv1a(w.bytes().data(), w.bytes().size()));
     return std::move(w.bytes());
 }
@@ -265,10 +267,11 @@ SolutionFile parse_solution(const std::string& bytes, const std::string& path) {
     Reader head(bytes, bytes.size(), path);
     for (std::size_t i = 0; i < sizeof kMagic; ++i) head.u8("magic");
     const std::uint32_t version = head.u32("version");
-    if (version != kSolutionFileVersion)
-        throw InputError(path, 0, "solution file format version " + std::to_string(version) +
-                                      " is not supported (this hemirad reads version " +
-                                      std::to_string(kSolutionFileVersion) + ")");
+    if (version != kSolutionFileVersion && version != 1)
+        throw InputError(path, 0,
+                         "solution file format version " + std::to_string(version) +
+                             " is not supported (this hemirad reads versions 1 to " +
+                             std::to_string(kSolutionFileVersion) + ")");
     const std::size_t body = bytes.size() - 8;
     std::uint64_t stored = 0;
     for (int i = 0; i < 8; ++i) stored |= std::uint64_t(std::uint8_t(bytes[body + i])) << (8 * i);
@@ -319,6 +322,11 @@ SolutionFile parse_solution(const std::string& bytes, const std::string& path) {
     const std::uint64_t n_provider = r.count(r.u32("provider state count"), 8, "provider values");
     f.state.provider.resize(n_provider);
     for (double& v : f.state.provider) v = r.f64("provider state");
+    if (version >= 2) { // version 1 had no luminaires
+        const std::uint64_t n_lum = r.count(r.u32("luminaire count"), 24, "luminaires");
+        f.state.luminaires.resize(n_lum);
+        for (dvec3& u : f.state.luminaires) u = r.dvec("luminaire unshot power");
+    }
     if (r.pos() != body)
         throw InputError(path, 0, "corrupt solution file: " + std::to_string(body - r.pos()) +
                                       " unexpected bytes before the checksum");

@@ -96,6 +96,8 @@ Solver::Solver(const Scene& scene, const SolverOptions& options,
 void Solver::init() {
     view_.assign(hierarchy_.node_count(), kViewUnknown);
     emitted_ = scene_->emitted_power();
+    luminaire_unshot_.clear();
+    for (const Luminaire& l : scene_->luminaires) luminaire_unshot_.push_back(dvec3(l.power()));
     rho_max_ = scene_->max_reflectance();
     // Default minimum shooter size: the size of the smallest leaf patches' polygons' leaves.
     max_size_ = options_.shooter_max_size > 0 ? options_.shooter_max_size : 1e300;
@@ -114,8 +116,14 @@ void Solver::init() {
 
 double Solver::seconds() const { return seconds_; }
 
+dvec3 Solver::unshot_power() const {
+    dvec3 u = hierarchy_.total_unshot_power();
+    for (const dvec3& l : luminaire_unshot_) u += l;
+    return u;
+}
+
 double Solver::unshot_fraction() const {
-    const dvec3 u = hierarchy_.total_unshot_power();
+    const dvec3 u = unshot_power();
     double f = 0;
     for (int c = 0; c < 3; ++c)
         if (emitted_[c] > 0) f = std::max(f, u[c] / emitted_[c]);
@@ -129,15 +137,15 @@ void Solver::check_stop() {
     else if (shots_ >= options_.max_shots) stop_ = StopReason::MaxShots;
     else if (options_.time_limit > 0 && seconds_ >= options_.time_limit)
         stop_ = StopReason::TimeLimit;
-    else if (sum(hierarchy_.total_unshot_power()) <= 0) stop_ = StopReason::NothingToShoot;
+    else if (sum(unshot_power()) <= 0)
+        stop_ = StopReason::NothingToShoot;
     else stop_ = StopReason::Running;
 }
 
 PatchAddress Solver::select_shooter(std::uint32_t polygon) {
     const bool tri = scene_->polygons[polygon].is_triangle();
     const int depth = hierarchy_.depth(polygon);
-    const double threshold =
-        options_.shooter_power_fraction * sum(hierarchy_.total_unshot_power());
+    const double threshold = options_.shooter_power_fraction * sum(unshot_power());
     PatchAddress a{polygon, 0, 0};
     while (int(a.level) < depth) {
         const bool must_descend = must_split(hierarchy_.node_id(a)) ||
@@ -174,7 +182,19 @@ bool Solver::step() {
         const double u = sum(hierarchy_.unshot_power(p));
         if (u > best) best = u, polygon = p;
     }
+    // A luminaire competes with the polygons by its unshot power (all of it, until it shoots).
+    std::size_t luminaire = 0;
+    double best_luminaire = 0;
+    for (std::size_t k = 0; k < luminaire_unshot_.size(); ++k) {
+        const double u = sum(luminaire_unshot_[k]);
+        if (u > best_luminaire) best_luminaire = u, luminaire = k;
+    }
     rec.t_select = since(t0);
+    if (best_luminaire > 0 && best_luminaire >= best) {
+        shoot_luminaire(luminaire, rec);
+        finish_shot(rec, t_start);
+        return true;
+    }
     t0 = Clock::now();
     if (hierarchy_.needs_push_pull(polygon)) hierarchy_.push_pull(polygon);
     rec.t_push_pull = since(t0);
@@ -193,7 +213,7 @@ bool Solver::step() {
         dB = dvec3(hierarchy_.node(sa).dB);
         area_s = double(hierarchy_.node(sa).area);
         shooter.unshot_power = sum(dB) * area_s;
-        const double total = sum(hierarchy_.total_unshot_power());
+        const double total = sum(unshot_power());
         shooter.power_fraction = total > 0 ? std::min(1.0, shooter.unshot_power / total) : 1.0;
 
         // 2. Form factors F(j -> S) for every receiving node.
@@ -223,7 +243,33 @@ bool Solver::step() {
     rec.links = links_.size();
 
     // 3. Update: dI_j += F(j->S) dB_S (irradiance); row sum sum_j F(j->S) A_j / A_S.
-    t0 = Clock::now();
+    deliver(dB, area_s, rec);
+    auto t1 = Clock::now();
+    hierarchy_.clear_unshot(sa);
+    rec.t_update += since(t1);
+    last_polygon_ = polygon;
+    finish_shot(rec, t_start);
+    return true;
+}
+
+// A luminaire shoots all its power once, over the whole sphere (FormFactorProvider::
+// shoot_point): E_j = ff_j * P, its row sum the fraction of P received.
+void Solver::shoot_luminaire(std::size_t k, ShotRecord& rec) {
+    const dvec3 power = luminaire_unshot_[k];
+    rec.luminaire = int(k);
+    rec.shooter = {0xFFFFFFFFu, 0, 0};
+    rec.shooter_power = sum(power);
+    auto t0 = Clock::now();
+    provider_->shoot_point(scene_->luminaires[k], links_);
+    rec.t_form_factors = since(t0);
+    rec.ff_phases = provider_->last_timings();
+    rec.links = links_.size();
+    deliver(power, 1.0, rec);
+    luminaire_unshot_[k] = dvec3(0.0);
+}
+
+void Solver::deliver(const dvec3& dB, double area_s, ShotRecord& rec) {
+    const auto t0 = Clock::now();
     double row = 0;
     for (const Link& l : links_) row += double(l.ff) * double(hierarchy_.node(l.receiver).area);
     row /= area_s;
@@ -244,20 +290,20 @@ bool Solver::step() {
         absorbed_ += (dvec3(1.0) - rho) * irradiance * a;
     }
     escaped_ += dB * area_s - received;
-    hierarchy_.clear_unshot(sa);
     rec.t_update = since(t0);
+}
 
+void Solver::finish_shot(ShotRecord& rec, Clock::time_point t_start) {
+    const double row = rec.row_sum;
     row_min_ = std::min(row_min_, row);
     row_max_ = std::max(row_max_, row);
     row_total_ += row;
     ++shots_;
-    last_polygon_ = polygon;
     seconds_ += since(t_start);
-    rec.unshot = hierarchy_.total_unshot_power();
+    rec.unshot = unshot_power();
     rec.unshot_fraction = unshot_fraction();
     rec.error_bound = error_bound();
     last_ = std::move(rec);
-    return true;
 }
 
 bool Solver::must_split(std::uint64_t node) const {
@@ -295,7 +341,7 @@ dvec3 Solver::ambient_irradiance() const {
     if (area <= 0) return dvec3(0.0);
     const dvec3 rho_avg = rho_area / area;
     const dvec3 R = dvec3(1.0) / (dvec3(1.0) - rho_avg);
-    return R * hierarchy_.total_unshot_power() / area;
+    return R * unshot_power() / area;
 }
 
 Solver::Counters Solver::counters() const {
@@ -333,6 +379,7 @@ Solver::State Solver::save_state() const {
     st.dirty = hierarchy_.dirty_flags();
     st.enclosed = view_;
     st.provider = provider_->save_state();
+    st.luminaires = luminaire_unshot_;
     return st;
 }
 
@@ -350,6 +397,11 @@ void Solver::restore_state(const State& st) {
     expect("polygons (unshot power)", st.unshot.size(), unshot.size());
     expect("polygons (dirty flags)", st.dirty.size(), dirty.size());
     expect("view codes", st.enclosed.size(), view_.size());
+    expect("luminaires", st.luminaires.size(), luminaire_unshot_.size());
+    for (std::size_t k = 0; k < st.luminaires.size(); ++k)
+        if (!finite(st.luminaires[k]) || st.luminaires[k].x < 0)
+            throw InputError("saved solver state: luminaire " + std::to_string(k) +
+                             " has an invalid unshot power");
     for (std::size_t i = 0; i < st.nodes.size(); ++i) {
         const Hierarchy::Node& n = st.nodes[i];
         if (!finite(n.H) || !finite(n.dB) || !finite(n.dI))
@@ -369,6 +421,7 @@ void Solver::restore_state(const State& st) {
     provider_->restore_state(st.provider);
     hierarchy_.restore_state(st.nodes, st.unshot, st.dirty);
     view_ = st.enclosed;
+    luminaire_unshot_ = st.luminaires;
     restore(c);
 }
 

@@ -310,7 +310,7 @@ void run_child(const Spec& spec) {
             else if (!std::strcmp(p.phase, "readback")) sum.readback += p.seconds;
             else if (!std::strcmp(p.phase, "reduce")) sum.reduce += p.seconds;
         }
-        if (spec.overhead) {
+        if (spec.overhead && r.luminaire < 0) {
             Shooter s;
             s.address = r.shooter;
             const Polygon& poly = scene.polygons[r.shooter.polygon];

@@ -28,8 +28,10 @@ int cmd_reference(int argc, char** argv) {
         "'hemirad solve --probe-out'; other probes get the free-space irradiance about their\n"
         "normal. OUT.csv has the columns of 'hemirad solve --probe-out' and the standard\n"
         "errors of the means: x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group,sem_r,sem_g,sem_b.");
-    args.positional("SCENE", &scene_name,
-                    std::string("OBJ file or built-in scene (") + builtin_names() + ")");
+    args.positional(
+        "SCENE", &scene_name,
+        std::string("OBJ file, SCENE.json (OBJ files, luminaires, cameras) or built-in scene (") +
+            builtin_names() + ")");
     args.option("--probes", &probes_in, "IN.csv", "points x,y,z,nx,ny,nz to evaluate (required)");
     args.option("--probe-out", &probes_out, "OUT.csv",
                 "irradiance and its standard error at the points (required)");

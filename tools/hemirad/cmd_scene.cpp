@@ -24,7 +24,10 @@ int cmd_scene(int argc, char** argv) {
     ObjOptions obj;
     ArgParser args("hemirad scene", "hemirad scene SCENE [--json] [--obj FILE.obj] [options]",
                    "Loads a scene and prints what it holds; writes it as OBJ/MTL with --obj.");
-    args.positional("SCENE", &name, std::string("OBJ file or built-in scene (") + builtin_names() + ")");
+    args.positional(
+        "SCENE", &name,
+        std::string("OBJ file, SCENE.json (OBJ files, luminaires, cameras) or built-in scene (") +
+            builtin_names() + ")");
     args.flag("--json", &json, "print JSON instead of text");
     args.option("--obj", &obj_out, "FILE.obj",
                 "also write the scene as OBJ, with its materials in FILE.mtl beside it (how "
@@ -64,6 +67,8 @@ int cmd_scene(int argc, char** argv) {
         j["quads"] = scene.quad_count();
         j["total_area"] = scene.total_area();
         j["emitted_power"] = power;
+        j["surface_power"] = scene.surface_power();
+        j["luminaire_power"] = scene.luminaire_power();
         j["bounds"]["min"] = b.lo;
         j["bounds"]["max"] = b.hi;
         Json mats = Json::array();
@@ -94,6 +99,12 @@ int cmd_scene(int argc, char** argv) {
             groups.push_back(o);
         }
         j["groups"] = groups;
+        Json sched = luminaire_schedule(scene);
+        j["installed_lumens"] = sched["installed_lumens"];
+        j["luminaires"] = sched["luminaires"];
+        Json cams = Json::array();
+        for (const Camera& c : scene.cameras) cams.push_back(c.name);
+        j["cameras"] = cams;
         Json warnings = Json::array();
         for (const std::string& w : scene.warnings) warnings.push_back(w);
         j["warnings"] = warnings;
@@ -115,6 +126,15 @@ int cmd_scene(int argc, char** argv) {
     std::printf("groups     %zu:", scene.groups.size());
     for (const std::string& g : scene.groups) std::printf(" %s", g.c_str());
     std::printf("\n");
+    if (!scene.luminaires.empty()) {
+        double total = 0;
+        for (const Luminaire& l : scene.luminaires) total += l.lumens();
+        std::printf("luminaires %zu, %.6g lm installed\n", scene.luminaires.size(), total);
+        for (const Luminaire& l : scene.luminaires)
+            std::printf("  %-12s %-7s %9.6g lm  at (%.4g, %.4g, %.4g)%s%s\n", l.name.c_str(),
+                        l.kind.c_str(), l.lumens(), l.position.x, l.position.y, l.position.z,
+                        l.file.empty() ? "" : "  ", l.file.c_str());
+    }
     return 0;
 }
 

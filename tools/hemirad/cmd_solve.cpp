@@ -33,7 +33,10 @@ Json address_json(const PatchAddress& a) {
 Json shot_json(const ShotRecord& r) {
     Json j = Json::object();
     j["shot"] = r.shot;
-    j["shooter"] = address_json(r.shooter);
+    if (r.luminaire >= 0)
+        j["luminaire"] = r.luminaire;
+    else
+        j["shooter"] = address_json(r.shooter);
     j["shooter_power"] = r.shooter_power;
     j["links"] = r.links;
     if (r.refined) j["refined"] = r.refined;
@@ -66,7 +69,10 @@ int cmd_solve(int argc, char** argv) {
     ArgParser args("hemirad solve", "hemirad solve SCENE [options]",
                    "Solves the radiosity of a scene by progressive shooting until the error\n"
                    "bound falls under the tolerance, then writes what was asked for.");
-    args.positional("SCENE", &scene_name, std::string("OBJ file or built-in scene (") + builtin_names() + ")");
+    args.positional(
+        "SCENE", &scene_name,
+        std::string("OBJ file, SCENE.json (OBJ files, luminaires, cameras) or built-in scene (") +
+            builtin_names() + ")");
     add_solver_options(args, so);
     args.section("output");
     args.option("--report", &report, "FILE.json", "write a JSON report");
@@ -120,6 +126,16 @@ int cmd_solve(int argc, char** argv) {
                      scene.source.c_str(), scene.polygons.size(),
                      (unsigned long long)solver.hierarchy().leaf_count(),
                      solver.provider().name().c_str());
+        if (!scene.luminaires.empty()) {
+            double total = 0;
+            for (const Luminaire& l : scene.luminaires) total += l.lumens();
+            std::fprintf(stderr, "hemirad: %zu luminaires, %.6g lm installed:\n",
+                         scene.luminaires.size(), total);
+            for (const Luminaire& l : scene.luminaires)
+                std::fprintf(stderr, "hemirad:   %-10s %-7s %9.6g lm at (%g, %g, %g)%s%s\n",
+                             l.name.c_str(), l.kind.c_str(), l.lumens(), l.position.x, l.position.y,
+                             l.position.z, l.file.empty() ? "" : "  ", l.file.c_str());
+        }
     }
     std::ofstream log_file;
     if (!log.empty()) {
@@ -172,6 +188,9 @@ int cmd_solve(int argc, char** argv) {
         std::fprintf(stderr, "hemirad: final gather at %zu points in %.2f s (%.2f ms a point)\n",
                      points, s, points ? 1e3 * s / double(points) : 0.0);
     }
+    if (!quiet)
+        for (const GridResult& g : grids)
+            std::fprintf(stderr, "hemirad: grid %s\n", grid_summary(g, exports.lux).c_str());
     if (!report.empty()) {
         write_report(report, solver, scene, grids, exports.lux);
         if (!quiet) std::fprintf(stderr, "hemirad: wrote %s (JSON report)\n", report.c_str());

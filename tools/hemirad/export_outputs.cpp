@@ -1,9 +1,13 @@
 #include "export_outputs.h"
 
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
+#include <set>
 
 #include "hemirad/error.h"
 #include "hemirad/export.h"
+#include "hemirad/image.h"
 #include "hemirad/report.h"
 
 namespace hemirad::cli {
@@ -14,6 +18,9 @@ void add_export_options(ArgParser& args, ExportOptions& o) {
                "irradiance on NXxNY points over a planar surface group (repeatable; x or ×)");
     args.option("--grid-out", &o.grid_out, "FILE.csv",
                 "all grid points: group,i,j,x,y,z,E_r,E_g,E_b,E_Y[,lux]");
+    args.option("--grid-png", &o.grid_png, "DIR",
+                "per grid, DIR/GROUP.png: a false-colour plan with the value of every point, "
+                "Emin, Eavg, Emax, U0 and Emin/Emax (lux with --lux) and the luminaires");
     // --lux is registered once, with the image options (it also sets the false-colour unit);
     // cmd_solve copies it into ExportOptions::lux.
     args.option("--export-ply", &o.ply, "FILE.ply",
@@ -41,6 +48,8 @@ std::vector<GridSpec> validate_export_options(const ExportOptions& o) {
     for (const std::string& g : o.grids) specs.push_back(parse_grid_spec(g));
     if (!o.grid_out.empty() && specs.empty())
         throw InputError("--grid-out needs at least one --grid GROUP:NXxNY");
+    if (!o.grid_png.empty() && specs.empty())
+        throw InputError("--grid-png needs at least one --grid GROUP:NXxNY");
     if (o.gather != "on" && o.gather != "off")
         throw InputError("--gather '" + o.gather + "' must be on or off");
     validate_gather_options(o.gather_options);
@@ -100,6 +109,28 @@ std::vector<GridResult> evaluate_grids(const std::vector<GridSpec>& specs, const
 void write_export_outputs(const ExportOptions& o, const std::vector<GridResult>& grids,
                           const Hierarchy& h, bool quiet) {
     if (!o.grid_out.empty()) write_text_file(o.grid_out, grids_csv(grids, o.lux));
+    if (!o.grid_png.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(o.grid_png, ec);
+        if (ec) throw RuntimeError("--grid-png: cannot create " + o.grid_png + ": " + ec.message());
+        std::set<std::string> used;
+        for (const GridResult& g : grids) {
+            std::string name;
+            for (char c : g.spec.group)
+                name +=
+                    std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.' ? c : '_';
+            if (name.empty() || name[0] == '.') name.insert(0, "grid");
+            if (!used.insert(name).second)
+                name.append("-")
+                    .append(std::to_string(g.spec.nx))
+                    .append("x")
+                    .append(std::to_string(g.spec.ny));
+            used.insert(name);
+            const std::string path = (std::filesystem::path(o.grid_png) / (name + ".png")).string();
+            write_png(path, grid_plan_image(g, o.lux, h.scene().luminaires));
+            if (!quiet) std::fprintf(stderr, "hemirad: wrote %s (grid plan)\n", path.c_str());
+        }
+    }
     if (!o.ply.empty()) export_ply(o.ply, h);
     if (!o.lightmaps.empty()) {
         const std::vector<std::string> files = export_lightmaps(o.lightmaps, h, o.discontinuities);

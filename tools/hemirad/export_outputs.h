@@ -18,6 +18,7 @@ namespace hemirad::cli {
 struct ExportOptions {
     std::vector<std::string> grids; ///< --grid GROUP:NXxNY, repeatable
     std::string grid_out;           ///< --grid-out FILE.csv: every grid's points, one file
+    std::string grid_png;           ///< --grid-png DIR: a false-colour plan per grid
     bool lux = false;               ///< --lux (shared with the images): grids also in lux
     std::string ply;                ///< --export-ply FILE.ply
     std::string lightmaps;          ///< --export-lightmaps DIR
@@ -48,7 +49,7 @@ std::unique_ptr<FinalGather> make_gather(const ExportOptions& o, const Hierarchy
 /// Evaluates the grids on the push-pulled solution (by final gather when `gather` is given).
 std::vector<GridResult> evaluate_grids(const std::vector<GridSpec>& specs, const Hierarchy& h,
                                        const FinalGather* gather, bool quiet);
-/// Writes --grid-out, --export-ply and --export-lightmaps.
+/// Writes --grid-out, --grid-png, --export-ply and --export-lightmaps.
 void write_export_outputs(const ExportOptions& o, const std::vector<GridResult>& grids,
                           const Hierarchy& h, bool quiet);
 

@@ -9,16 +9,13 @@
 
 #include "hemirad/error.h"
 #include "hemirad/image.h"
+#include "hemirad/photometry.h"
 #include "hemirad/render.h"
 #include "output/draw.h"
 
 namespace hemirad::cli {
 
 namespace {
-
-/// Luminous efficacy at 555 nm [lm/W]: irradiance in W m^-2 to illuminance in lux, for light
-/// treated as if it were all at the eye's peak sensitivity (the convention of --lux).
-constexpr double kLumensPerWatt = 683.0;
 
 std::string extension_of(const std::string& path) {
     const std::size_t slash = path.find_last_of('/');

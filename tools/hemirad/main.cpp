@@ -23,8 +23,10 @@ const char* kUsage =
     "  reference SCENE    unbiased Monte-Carlo irradiance at probe points (the yardstick)\n"
     "  info               print the GL backend, vendor, renderer and version\n"
     "\n"
-    "SCENE is an OBJ file or a built-in scene: cornell, cube, furnace, sphere, room, cie53,\n"
-    "cie56, cie57, cie58, room402, scene3138 (the files in assets/ hold them too).\n"
+    "SCENE is an OBJ file, a SCENE.json project (OBJ files, IES and point luminaires,\n"
+    "cameras; see README, \"Lighting design\") or a built-in scene: cornell, cube, furnace,\n"
+    "sphere, room, cie53, cie56, cie57, cie58, room402, scene3138 (the files in assets/ hold\n"
+    "them too).\n"
     "Run 'hemirad COMMAND --help' for a command's options.\n";
 
 } // namespace

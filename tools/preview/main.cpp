@@ -224,8 +224,10 @@ int run(int argc, char** argv) {
                    "Solves a scene by progressive shooting and writes a frame of the solution\n"
                    "every N shots (or T seconds) as DIR/frame_SHOT.png, then\n"
                    "DIR/contact_sheet.png, DIR/convergence.png and DIR/convergence.csv.");
-    args.positional("SCENE", &o.scene,
-                    std::string("OBJ file or built-in scene (") + builtin_names() + ")");
+    args.positional(
+        "SCENE", &o.scene,
+        std::string("OBJ file, SCENE.json (OBJ files, luminaires, cameras) or built-in scene (") +
+            builtin_names() + ")");
     args.section("frames");
     args.option("--out", &o.out, "DIR", "output directory (created if missing)");
     args.option("--every", &o.every, "N", "write a frame every N shots (0 = only by time)");

@@ -309,8 +309,10 @@ int run(int argc, char** argv) {
                    "Opens a window on a scene, solves it progressively between frames and\n"
                    "shows the solution as it converges. Press H in the window for the keys.\n"
                    "With --screenshot, --after-shots or --frames it saves a frame and exits.");
-    args.positional("SCENE", &o.scene,
-                    std::string("OBJ file or built-in scene (") + builtin_names() + ")");
+    args.positional(
+        "SCENE", &o.scene,
+        std::string("OBJ file, SCENE.json (OBJ files, luminaires, cameras) or built-in scene (") +
+            builtin_names() + ")");
     args.section("window");
     args.option("--width", &o.width, "W", "window width [pixels]");
     args.option("--height", &o.height, "H", "window height [pixels]");
@@ -482,7 +484,8 @@ int run(int argc, char** argv) {
             const Camera cam = s.camera.camera();
             // The shooter of the last shot, on top of the scene (not depth-tested).
             std::optional<PatchAddress> shooter;
-            if (s.highlight && solver.shots() > 0) shooter = solver.last_shot().shooter;
+            if (s.highlight && solver.shots() > 0 && solver.last_shot().luminaire < 0)
+                shooter = solver.last_shot().shooter;
             ColourScale scale;
             Hierarchy& h = solver.solution();
             if (s.false_colour) {

@@ -1,0 +1,367 @@
+// SCENE.json: a project file that assembles a scene from geometry files, luminaires and
+// cameras (scene_io.h, load_scene_json). Parsed with nlohmann::json; a second, SAX pass over
+// the text finds the line of every key, so that each message names file:line and the key.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "hemirad/error.h"
+#include "hemirad/scene_io.h"
+
+namespace hemirad {
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// Lines of the keys of a JSON text, by JSON pointer ("/luminaires/0/position"); an array
+// element or object is located by its first key. Keys are found in the text in document order
+// (a key is a string followed by ':', which a string value never is).
+class KeyLines final : public nlohmann::json_sax<json> {
+  public:
+    explicit KeyLines(const std::string& text) : text_(text) {}
+    std::map<std::string, int> lines;
+
+    bool null() override { return value(); }
+    bool boolean(bool) override { return value(); }
+    bool number_integer(number_integer_t) override { return value(); }
+    bool number_unsigned(number_unsigned_t) override { return value(); }
+    bool number_float(number_float_t, const string_t&) override { return value(); }
+    bool string(string_t&) override { return value(); }
+    bool binary(binary_t&) override { return value(); }
+    bool start_object(std::size_t) override { return open(false); }
+    bool start_array(std::size_t) override { return open(true); }
+    bool end_object() override { return close(); }
+    bool end_array() override { return close(); }
+    bool key(string_t& k) override {
+        frames_.back().key = k;
+        const int line = find_key(k);
+        std::string container = pointer();
+        if (!lines.count(container)) lines[container] = line;
+        lines[container + "/" + escape(k)] = line;
+        return true;
+    }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false;
+    }
+
+  private:
+    struct Frame {
+        bool array = false;
+        long next = 0;    // arrays: index of the next element
+        std::string key;  // objects: the last key
+        std::string name; // this container's pointer component
+    };
+
+    static std::string escape(const std::string& k) {
+        std::string out;
+        for (char c : k) out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+        return out;
+    }
+    std::string pointer() const {
+        std::string p;
+        for (std::size_t i = 1; i < frames_.size(); ++i) p += "/" + frames_[i].name;
+        return p;
+    }
+    std::string component() {
+        if (frames_.empty()) return "";
+        Frame& f = frames_.back();
+        return f.array ? std::to_string(f.next++) : escape(f.key);
+    }
+    bool value() {
+        component();
+        return true;
+    }
+    bool open(bool array) {
+        Frame f;
+        f.array = array;
+        f.name = component();
+        frames_.push_back(f);
+        return true;
+    }
+    bool close() {
+        frames_.pop_back();
+        return true;
+    }
+    int find_key(const std::string& k) {
+        const std::string quoted = "\"" + k + "\"";
+        for (std::size_t pos = cursor_; (pos = text_.find(quoted, pos)) != std::string::npos;
+             ++pos) {
+            std::size_t after = pos + quoted.size();
+            while (after < text_.size() && std::isspace(static_cast<unsigned char>(text_[after])))
+                ++after;
+            if (after < text_.size() && text_[after] == ':') {
+                line_ +=
+                    int(std::count(text_.begin() + long(cursor_), text_.begin() + long(pos), '\n'));
+                cursor_ = pos;
+                return line_;
+            }
+        }
+        return 0; // not found as written (escapes): no line
+    }
+
+    const std::string& text_;
+    std::size_t cursor_ = 0;
+    int line_ = 1;
+    std::vector<Frame> frames_;
+};
+
+// Reads one SCENE.json: the document, the lines of its keys, and where relative paths start.
+class Reader {
+  public:
+    Reader(const std::string& path, const std::map<std::string, int>& lines)
+        : path_(path), lines_(lines), dir_(fs::path(path).parent_path()) {}
+
+    [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
+        throw InputError(path_, line(pointer), readable(pointer) + ": " + what);
+    }
+    int line(const std::string& pointer) const {
+        // The key itself, else the nearest enclosing key that has a line.
+        for (std::string p = pointer;; p = p.substr(0, p.rfind('/'))) {
+            const auto it = lines_.find(p);
+            if (it != lines_.end() && it->second > 0) return it->second;
+            if (p.empty()) return 0;
+        }
+    }
+    // "/luminaires/0/position" -> "luminaires[0].position" (for messages).
+    static std::string readable(const std::string& pointer) {
+        std::string out;
+        std::istringstream in(pointer);
+        std::string part;
+        std::getline(in, part, '/'); // leading empty
+        while (std::getline(in, part, '/')) {
+            const bool index = !part.empty() && std::all_of(part.begin(), part.end(), ::isdigit);
+            if (index)
+                out += "[" + part + "]";
+            else
+                out += (out.empty() ? "" : ".") + part;
+        }
+        return out.empty() ? "(top level)" : out;
+    }
+
+    void only_keys(const json& o, const std::string& at,
+                   std::initializer_list<const char*> allowed) const {
+        if (!o.is_object()) fail(at, "expected an object {...}, got " + dump(o));
+        for (const auto& [k, v] : o.items()) {
+            (void)v;
+            if (std::none_of(allowed.begin(), allowed.end(),
+                             [&](const char* a) { return k == a; })) {
+                std::string list;
+                for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+                fail(at + "/" + k, "unknown key '" + k + "' (expected: " + list + ")");
+            }
+        }
+    }
+    double number(const json& v, const std::string& at) const {
+        if (!v.is_number()) fail(at, "expected a number, got " + dump(v));
+        const double x = v.get<double>();
+        if (!std::isfinite(x)) fail(at, "expected a finite number, got " + dump(v));
+        return x;
+    }
+    dvec3 vec3(const json& v, const std::string& at) const {
+        if (!v.is_array() || v.size() != 3)
+            fail(at, "expected 3 numbers [x, y, z], got " + dump(v));
+        return {number(v[0], at), number(v[1], at), number(v[2], at)};
+    }
+    std::string string(const json& v, const std::string& at) const {
+        if (!v.is_string()) fail(at, "expected a string, got " + dump(v));
+        return v.get<std::string>();
+    }
+    /// A path relative to the JSON file's folder (absolute paths as they are).
+    std::string resolve(const std::string& p) const {
+        const fs::path q(p);
+        return (q.is_absolute() || dir_.empty() ? q : dir_ / q).lexically_normal().string();
+    }
+    static std::string dump(const json& v) {
+        std::string s = v.dump();
+        return s.size() > 60 ? s.substr(0, 57) + "..." : s;
+    }
+
+  private:
+    std::string path_;
+    const std::map<std::string, int>& lines_;
+    fs::path dir_;
+};
+
+std::string lower_extension(const std::string& path) {
+    std::string e = fs::path(path).extension().string();
+    for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return e;
+}
+
+// Appends `part` to `out`: materials after out's, groups merged by name.
+void merge(Scene& out, const Scene& part) {
+    const auto offset = std::uint32_t(out.materials.size());
+    out.materials.insert(out.materials.end(), part.materials.begin(), part.materials.end());
+    std::vector<std::uint32_t> group(part.groups.size());
+    for (std::size_t g = 0; g < part.groups.size(); ++g) {
+        const int found = out.find_group(part.groups[g]);
+        if (found >= 0) {
+            group[g] = std::uint32_t(found);
+        } else {
+            out.groups.push_back(part.groups[g]);
+            group[g] = std::uint32_t(out.groups.size() - 1);
+        }
+    }
+    for (Polygon p : part.polygons) {
+        p.material += offset;
+        p.group = group[p.group];
+        out.polygons.push_back(p);
+    }
+    out.cameras.insert(out.cameras.end(), part.cameras.begin(), part.cameras.end());
+    for (const std::string& w : part.warnings)
+        if (w.rfind(kNoEmitterWarning, 0) != 0) out.warnings.push_back(w);
+}
+
+Luminaire read_luminaire(const Reader& r, const json& j, const std::string& at, std::size_t k) {
+    r.only_keys(j, at,
+                {"name", "ies", "candela", "spot", "position", "aim", "rotation", "multiplier"});
+    Luminaire l;
+    l.name = j.contains("name") ? r.string(j["name"], at + "/name") : "L" + std::to_string(k + 1);
+    const int kinds = int(j.contains("ies")) + int(j.contains("candela")) + int(j.contains("spot"));
+    if (kinds != 1)
+        r.fail(at, kinds == 0 ? "a luminaire needs one of 'ies' (an IES file), 'candela' (an "
+                                "isotropic point source) or 'spot'"
+                              : "a luminaire has one of 'ies', 'candela' and 'spot', not several");
+    if (!j.contains("position")) r.fail(at, "a luminaire needs a 'position' [x, y, z]");
+    l.position = r.vec3(j["position"], at + "/position");
+    if (j.contains("aim")) l.aim = r.vec3(j["aim"], at + "/aim");
+    if (j.contains("rotation")) l.rotation = r.number(j["rotation"], at + "/rotation");
+    if (j.contains("multiplier")) {
+        l.multiplier = r.number(j["multiplier"], at + "/multiplier");
+        if (!(l.multiplier > 0))
+            r.fail(at + "/multiplier", "must be > 0, got " + Reader::dump(j["multiplier"]));
+    }
+    if (j.contains("ies")) {
+        l.kind = "ies";
+        l.file = r.string(j["ies"], at + "/ies");
+        IesFile f;
+        try {
+            f = read_ies(r.resolve(l.file));
+        } catch (const InputError& e) {
+            r.fail(at + "/ies", e.what());
+        }
+        l.distribution = f.distribution;
+        l.rated_lumens = f.rated_lumens() * l.multiplier;
+    } else if (j.contains("candela")) {
+        l.kind = "candela";
+        const double I = r.number(j["candela"], at + "/candela");
+        if (!(I >= 0)) r.fail(at + "/candela", "must be >= 0, got " + Reader::dump(j["candela"]));
+        l.distribution = isotropic_distribution(I);
+    } else {
+        l.kind = "spot";
+        const std::string sp = at + "/spot";
+        const json& s = j["spot"];
+        r.only_keys(s, sp, {"candela", "cone", "falloff"});
+        if (!s.contains("candela") || !s.contains("cone"))
+            r.fail(sp, "a spot needs 'candela' and 'cone' (and optionally 'falloff'), degrees");
+        const double I = r.number(s["candela"], sp + "/candela");
+        if (!(I >= 0)) r.fail(sp + "/candela", "must be >= 0, got " + Reader::dump(s["candela"]));
+        const double cone = r.number(s["cone"], sp + "/cone");
+        const double falloff = s.contains("falloff") ? r.number(s["falloff"], sp + "/falloff") : 0;
+        try {
+            l.distribution = spot_distribution(I, cone, falloff);
+        } catch (const InputError& e) {
+            r.fail(sp, e.what());
+        }
+    }
+    try {
+        l.orient();
+    } catch (const InputError&) {
+        r.fail(at + "/aim", "must be a non-zero direction, got " + Reader::dump(j["aim"]));
+    }
+    return l;
+}
+
+Camera read_camera(const Reader& r, const json& j, const std::string& at, std::size_t k) {
+    r.only_keys(j, at, {"name", "eye", "target", "up", "fov"});
+    Camera c;
+    c.name =
+        j.contains("name") ? r.string(j["name"], at + "/name") : "camera" + std::to_string(k + 1);
+    if (!j.contains("eye") || !j.contains("target"))
+        r.fail(at, "a camera needs 'eye' and 'target' [x, y, z] (and optionally 'up', 'fov')");
+    c.eye = r.vec3(j["eye"], at + "/eye");
+    c.target = r.vec3(j["target"], at + "/target");
+    if (j.contains("up")) c.up = r.vec3(j["up"], at + "/up");
+    if (j.contains("fov")) {
+        c.fov_y_deg = r.number(j["fov"], at + "/fov");
+        if (!(c.fov_y_deg > 0 && c.fov_y_deg < 180))
+            r.fail(at + "/fov", "must be in (0, 180) degrees, got " + Reader::dump(j["fov"]));
+    }
+    if (glm::length(c.target - c.eye) == 0) r.fail(at + "/target", "must differ from 'eye'");
+    if (glm::length(glm::cross(c.target - c.eye, c.up)) == 0)
+        r.fail(at + "/up", "must not be parallel to the view direction");
+    return c;
+}
+
+} // namespace
+
+bool is_scene_json(const std::string& path) {
+    return lower_extension(path) == ".json";
+}
+
+Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, 0, "cannot open scene file");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    const std::string text = ss.str();
+    json doc;
+    try {
+        doc = json::parse(text);
+    } catch (const json::parse_error& e) {
+        // "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
+        std::string m = e.what();
+        const auto at = m.find("parse error");
+        throw InputError(path, 0,
+                         "not valid JSON: " + (at == std::string::npos ? m : m.substr(at)));
+    }
+    KeyLines locator(text);
+    json::sax_parse(text, &locator);
+    const Reader r(path, locator.lines);
+    r.only_keys(doc, "", {"include", "luminaires", "cameras"});
+
+    Scene scene;
+    scene.source = path;
+    if (!doc.contains("include") || !doc["include"].is_array() || doc["include"].empty())
+        r.fail("/include", "expected a list of geometry files, e.g. \"include\": [\"room.obj\"]");
+    const json& include = doc["include"];
+    for (std::size_t i = 0; i < include.size(); ++i) {
+        const std::string at = "/include/" + std::to_string(i);
+        const std::string file = r.string(include[i], at);
+        const std::string ext = lower_extension(file);
+        if (ext == ".gltf" || ext == ".glb")
+            r.fail(at, "'" + file + "': glTF is not read yet (include OBJ files)");
+        if (ext != ".obj") r.fail(at, "'" + file + "': expected an OBJ file (.obj)");
+        const std::string resolved = r.resolve(file);
+        if (!fs::exists(resolved)) r.fail(at, "'" + file + "': no such file (" + resolved + ")");
+        merge(scene, load_obj(resolved, obj));
+    }
+    if (doc.contains("luminaires")) {
+        const json& ls = doc["luminaires"];
+        if (!ls.is_array()) r.fail("/luminaires", "expected a list of luminaires [{...}, ...]");
+        for (std::size_t k = 0; k < ls.size(); ++k)
+            scene.luminaires.push_back(
+                read_luminaire(r, ls[k], "/luminaires/" + std::to_string(k), k));
+    }
+    if (doc.contains("cameras")) {
+        const json& cs = doc["cameras"];
+        if (!cs.is_array()) r.fail("/cameras", "expected a list of cameras [{...}, ...]");
+        std::vector<Camera> cams;
+        for (std::size_t k = 0; k < cs.size(); ++k)
+            cams.push_back(read_camera(r, cs[k], "/cameras/" + std::to_string(k), k));
+        // The file's cameras first: cameras[0] is the default view.
+        scene.cameras.insert(scene.cameras.begin(), cams.begin(), cams.end());
+    }
+    finish_scene(scene, path);
+    return scene;
+}
+
+} // namespace hemirad
