@@ -3,7 +3,8 @@
 //   0  --camera E,T,U,FOV (parse_camera, src/render/solution_renderer.cpp)
 //   1  --grid GROUP:NXxNY (parse_grid_spec, src/solver/grid.cpp)
 //   2  a command line (ArgParser, src/core/args.cpp, with hemirad solve's solver, scene and
-//      --memory-limit options): the text split at NUL bytes into arguments
+//      --memory-limit options): the text split at NUL bytes into arguments (--help and -h
+//      left out: they print the help and parse nothing)
 //   3  --memory-limit SIZE (parse_memory_size, src/solver/memory_guard.cpp)
 #include <string>
 #include <vector>
@@ -32,7 +33,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             }
             words.push_back(w);
             std::vector<char*> argv;
-            for (std::string& s : words) argv.push_back(s.data());
+            for (std::string& s : words)
+                if (s != "--help" && s != "-h") argv.push_back(s.data()); // prints, parses nothing
             ArgParser args("hemirad-fuzz", "hemirad-fuzz SCENE [options]", "fuzzing");
             std::string scene;
             args.positional("SCENE", &scene, "scene");
