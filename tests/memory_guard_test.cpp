@@ -47,8 +47,9 @@ TEST(MemoryGuard, ParsesSizes) {
     EXPECT_EQ(parse_memory_size("2GiB", "--memory-limit"), 2ull << 30);
     EXPECT_EQ(parse_memory_size("4KB", "--memory-limit"), 4096u);
     for (const char* bad : {"", "-1", "12Q", "M", "1e999", "nan", "inf", "1G2", " 1G", "99999999T"})
-        EXPECT_NE(message_of([&] { parse_memory_size(bad, "--memory-limit"); })
-                      .find("--memory-limit '" + std::string(bad) + "'"),
+        EXPECT_NE(message_of([&] {
+                      parse_memory_size(bad, "--memory-limit");
+                  }).find("--memory-limit '" + std::string(bad) + "'"),
                   std::string::npos)
             << bad;
 }

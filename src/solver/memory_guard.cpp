@@ -28,7 +28,8 @@ std::uint64_t meminfo(const char* key) {
     std::string line;
     const std::string k = std::string(key) + ":";
     while (std::getline(in, line))
-        if (line.rfind(k, 0) == 0) return std::strtoull(line.c_str() + k.size(), nullptr, 10) * 1024;
+        if (line.rfind(k, 0) == 0)
+            return std::strtoull(line.c_str() + k.size(), nullptr, 10) * 1024;
     return 0;
 }
 
@@ -57,7 +58,8 @@ MemoryEstimate estimate_memory(const Scene& scene, const Discretisation& disc,
         const std::uint64_t side = std::uint64_t(1) << e.deepest;
         e.gl = side * side * 8 * 4 / 3; // RGBA16UI patch IDs with mipmaps
         const GpuProviderOptions& g = options.provider.gpu;
-        const std::uint64_t r = std::uint64_t(std::max(g.resolution ? g.resolution : g.max_resolution, 0));
+        const std::uint64_t r =
+            std::uint64_t(std::max(g.resolution ? g.resolution : g.max_resolution, 0));
         const std::uint64_t pixels = (2 * r) * (r + r / 2);
         e.gl += pixels * (16 + 4 + 16); // colour, depth, read-back
     }
@@ -71,7 +73,8 @@ std::uint64_t available_memory(std::string* source) {
     // cgroup v2, then v1: the limit minus what the group already uses.
     const std::pair<const char*, const char*> groups[] = {
         {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory.current"},
-        {"/sys/fs/cgroup/memory/memory.limit_in_bytes", "/sys/fs/cgroup/memory/memory.usage_in_bytes"},
+        {"/sys/fs/cgroup/memory/memory.limit_in_bytes",
+         "/sys/fs/cgroup/memory/memory.usage_in_bytes"},
     };
     for (const auto& [max_path, current_path] : groups) {
         bool ok_max = false, ok_cur = false;
@@ -111,7 +114,8 @@ std::uint64_t parse_memory_size(const std::string& text, const std::string& opti
     char* e = nullptr;
     errno = 0;
     const double x = std::strtod(b, &e);
-    if (e == b || errno == ERANGE || !std::isfinite(x) || x < 0 || !std::isdigit(static_cast<unsigned char>(*b)))
+    if (e == b || errno == ERANGE || !std::isfinite(x) || x < 0 ||
+        !std::isdigit(static_cast<unsigned char>(*b)))
         throw bad();
     std::string unit(e);
     for (char& c : unit) c = char(std::toupper(static_cast<unsigned char>(c)));

@@ -23,7 +23,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
         const Scene scene = load_obj(obj);
         (void)scene.content_hash();
-    } catch (const InputError&) {
-    }
+    } catch (const InputError&) {}
     return 0;
 }

@@ -22,14 +22,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string text(fuzz::as_view(data + 1, size - 1));
     try {
         switch (data[0] % 4) {
-        case 0: (void)parse_camera(text); break;
-        case 1: (void)parse_grid_spec(text); break;
+        case 0:
+            (void)parse_camera(text);
+            break;
+        case 1:
+            (void)parse_grid_spec(text);
+            break;
         case 2: {
             std::vector<std::string> words{"hemirad-fuzz"};
             std::string w;
             for (char c : text) {
-                if (c == '\0') words.push_back(w), w.clear();
-                else w += c;
+                if (c == '\0')
+                    words.push_back(w), w.clear();
+                else
+                    w += c;
             }
             words.push_back(w);
             std::vector<char*> argv;
@@ -49,9 +55,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             if (args.parse(int(argv.size()), argv.data())) validate_options(so);
             break;
         }
-        case 3: (void)parse_memory_size(text, "--memory-limit"); break;
+        case 3:
+            (void)parse_memory_size(text, "--memory-limit");
+            break;
         }
-    } catch (const InputError&) {
-    }
+    } catch (const InputError&) {}
     return 0;
 }

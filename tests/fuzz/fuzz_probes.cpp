@@ -9,7 +9,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string path = fuzz::write_scratch("probes.csv", fuzz::as_view(data, size));
     try {
         (void)read_probes(path);
-    } catch (const InputError&) {
-    }
+    } catch (const InputError&) {}
     return 0;
 }

@@ -31,7 +31,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         SolverOptions o;
         for (const SolutionOption& option : f.options) apply_solution_option(o, option, "fuzz.hrs");
         validate_options(o);
-    } catch (const InputError&) {
-    }
+    } catch (const InputError&) {}
     return 0;
 }
