@@ -35,8 +35,7 @@ void add_solver_options(ArgParser& args, SolverOptions& so) {
     std::uint64_t* limit = &so.memory_limit;
     args.custom(
         "--memory-limit",
-        [limit](const std::string& v) { *limit = parse_memory_size(v, "--memory-limit"); },
-        "SIZE",
+        [limit](const std::string& v) { *limit = parse_memory_size(v, "--memory-limit"); }, "SIZE",
         "refuse a discretisation whose estimated memory exceeds SIZE (bytes, or 512M, 4G, ...; "
         "0 = the memory available: MemAvailable, or the cgroup limit if lower)",
         "0");

@@ -189,8 +189,8 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
         if (base > max_tex)
             throw InputError("--max-depth " + std::to_string(max_depth) +
                              ": the patch-ID texture would be " + std::to_string(base) +
-                             " texels wide, but this GL driver allows " +
-                             std::to_string(max_tex) + "; use a smaller --max-depth");
+                             " texels wide, but this GL driver allows " + std::to_string(max_tex) +
+                             "; use a smaller --max-depth");
         while (glGetError() != GL_NO_ERROR) {}
     }
 
@@ -222,12 +222,15 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
     depth_.storage(GL_DEPTH_COMPONENT32F, 2 * max_res_, max_res_ + max_res_ / 2);
     fbo_ = gl::Framebuffer::create();
     if (glGetError() == GL_OUT_OF_MEMORY) {
-        const double mib = (double(base) * base * 8 * 4 / 3 +
-                            2.0 * max_res_ * (max_res_ + max_res_ / 2) * 20) / (1 << 20);
+        const double mib =
+            (double(base) * base * 8 * 4 / 3 + 2.0 * max_res_ * (max_res_ + max_res_ / 2) * 20) /
+            (1 << 20);
         throw InputError("the GL driver could not allocate the hemicube and patch-ID textures (" +
-                         std::to_string(long(mib)) + " MiB): use a smaller --max-resolution "
-                         "(or --resolution; now " + std::to_string(max_res_) +
-                         ") or --max-depth (now " + std::to_string(max_depth) + ")");
+                         std::to_string(long(mib)) +
+                         " MiB): use a smaller --max-resolution "
+                         "(or --resolution; now " +
+                         std::to_string(max_res_) + ") or --max-depth (now " +
+                         std::to_string(max_depth) + ")");
     }
     fbo_.attach(GL_COLOR_ATTACHMENT0, colour_);
     fbo_.attach(GL_DEPTH_ATTACHMENT, depth_);

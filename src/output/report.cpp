@@ -2,8 +2,8 @@
 
 #include <climits>
 #include <cmath>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -86,8 +86,7 @@ std::vector<Probe> read_probes(const std::string& path) {
     while (read_bounded_line(in, line, kMaxLine, too_long, has_nul)) {
         if (number == INT_MAX) throw InputError(path, number, "too many lines");
         ++number;
-        if (too_long)
-            throw InputError(path, number, "line longer than 64 KiB (not a probe CSV?)");
+        if (too_long) throw InputError(path, number, "line longer than 64 KiB (not a probe CSV?)");
         if (has_nul)
             throw InputError(path, number,
                              "NUL byte in '" + quoted_excerpt(line) + "' (not a text file?)");
@@ -115,18 +114,21 @@ std::vector<Probe> read_probes(const std::string& path) {
         }
         if (!numeric) {
             if (probes.empty() && number == 1 && text) continue; // header line
-            throw InputError(path, number, "'" + quoted_excerpt(bad_cell) +
-                                               "' is not a finite number; expected 6 numbers "
-                                               "x,y,z,nx,ny,nz: '" + quoted_excerpt(line) + "'");
+            throw InputError(path, number,
+                             "'" + quoted_excerpt(bad_cell) +
+                                 "' is not a finite number; expected 6 numbers "
+                                 "x,y,z,nx,ny,nz: '" +
+                                 quoted_excerpt(line) + "'");
         }
         if (count != 6)
-            throw InputError(path, number, "expected 6 numbers x,y,z,nx,ny,nz, got " +
-                                               std::to_string(count) + ": '" +
-                                               quoted_excerpt(line) + "'");
+            throw InputError(path, number,
+                             "expected 6 numbers x,y,z,nx,ny,nz, got " + std::to_string(count) +
+                                 ": '" + quoted_excerpt(line) + "'");
         Probe p{dvec3(v[0], v[1], v[2]), dvec3(v[3], v[4], v[5])};
         if (!(glm::length(p.normal) > 0) || !std::isfinite(glm::length(p.normal)))
-            throw InputError(path, number, "the normal (" + num(v[3]) + "," + num(v[4]) + "," +
-                                               num(v[5]) + ") has no finite direction");
+            throw InputError(path, number,
+                             "the normal (" + num(v[3]) + "," + num(v[4]) + "," + num(v[5]) +
+                                 ") has no finite direction");
         probes.push_back(p);
     }
     if (in.bad()) throw InputError(path, 0, "cannot read probe file");

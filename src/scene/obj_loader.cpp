@@ -195,7 +195,8 @@ dvec3 parse_colour(const std::vector<std::string>& w, const std::string& file, i
         const std::string& t = w.size() == 2 ? w[1] : w[std::size_t(k) + 1];
         double x;
         if (!parse_double(t, x))
-            throw InputError(file, line, "cannot parse " + w[0] + " value '" + quoted_excerpt(t) + "'");
+            throw InputError(file, line,
+                             "cannot parse " + w[0] + " value '" + quoted_excerpt(t) + "'");
         if (!std::isfinite(x))
             throw InputError(file, line, w[0] + " value " + quoted_excerpt(t) + " is not finite");
         c[k] = x;
@@ -347,12 +348,12 @@ std::uint32_t face_corner(const std::string& token, long vertices, long texcoord
         const long i = std::strtol(idx.c_str(), &e, 10);
         if (idx.empty() || *e != '\0' || i == 0)
             throw InputError(file, line,
-                             "cannot parse face " + std::string(what[part]) + " index '" + quoted_excerpt(token) +
-                                 "'");
+                             "cannot parse face " + std::string(what[part]) + " index '" +
+                                 quoted_excerpt(token) + "'");
         const long resolved = i > 0 ? i : counts[part] + 1 + i;
         if (resolved < 1 || resolved > counts[part]) {
-            const std::string text = "face " + std::string(what[part]) + " index " + quoted_excerpt(idx) +
-                                     " refers to no " + what[part] + " (" +
+            const std::string text = "face " + std::string(what[part]) + " index " +
+                                     quoted_excerpt(idx) + " refers to no " + what[part] + " (" +
                                      std::to_string(counts[part]) + " defined so far)";
             if (part == 0) throw InputError(file, line, text);
             notes.add(std::string("index ") + what[part], where(file, line),
@@ -450,15 +451,18 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
         const int line = st.line;
         if (key == "v") {
             if (w.size() < 4)
-                throw InputError(path, line, "vertex needs 3 coordinates: '" + quoted_excerpt(st.text) + "'");
+                throw InputError(path, line,
+                                 "vertex needs 3 coordinates: '" + quoted_excerpt(st.text) + "'");
             dvec3 p;
             for (int k = 0; k < 3; ++k) {
                 const std::string& t = w[std::size_t(k) + 1];
                 if (!parse_double(t, p[k]))
-                    throw InputError(path, line, "cannot parse vertex coordinate '" + quoted_excerpt(t) + "'");
+                    throw InputError(path, line,
+                                     "cannot parse vertex coordinate '" + quoted_excerpt(t) + "'");
                 if (!std::isfinite(p[k]))
                     throw InputError(path, line,
-                                     "vertex coordinate " + quoted_excerpt(t) + " is not a finite number");
+                                     "vertex coordinate " + quoted_excerpt(t) +
+                                         " is not a finite number");
             }
             vertices.push_back(p); // a 4th value (w) or vertex colours are not used
         } else if (key == "vt") {
@@ -468,7 +472,8 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
         } else if (key == "f" || key == "fo") {
             if (w.size() < 4)
                 throw InputError(path, line,
-                                 "face needs at least 3 vertices: '" + quoted_excerpt(st.text) + "'");
+                                 "face needs at least 3 vertices: '" + quoted_excerpt(st.text) +
+                                     "'");
             if (w.size() - 1 > kMaxFaceCorners)
                 throw InputError(path, line,
                                  "face has " + std::to_string(w.size() - 1) +

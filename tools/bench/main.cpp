@@ -442,11 +442,10 @@ void run_soak(const Spec& spec) {
     std::printf("JSON %s\n", j.dump(0).c_str());
     std::printf("ROW %-22s %6zu %9llu %6ld %8.3f %8.2f  RSS %.1f -> %.1f MiB, slope %.2f KiB/1000 "
                 "shots, GL objects %ld -> %ld (%ld after), log unwritten max %llu bytes\n",
-                spec.name.c_str(), scene.polygons.size(), (unsigned long long)leaves, done,
-                seconds, 1e3 * seconds / double(std::max(done, 1L)),
-                rss.empty() ? 0.0 : rss.front(), rss.empty() ? 0.0 : rss.back(),
-                per_shot * 1024 * 1000, gl_start.total(), gl_end.total(), gl_after.total(),
-                (unsigned long long)max_unwritten);
+                spec.name.c_str(), scene.polygons.size(), (unsigned long long)leaves, done, seconds,
+                1e3 * seconds / double(std::max(done, 1L)), rss.empty() ? 0.0 : rss.front(),
+                rss.empty() ? 0.0 : rss.back(), per_shot * 1024 * 1000, gl_start.total(),
+                gl_end.total(), gl_after.total(), (unsigned long long)max_unwritten);
     std::fflush(stdout);
     std::remove(log_path.c_str());
 }

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "export_outputs.h"
 #include "hemirad/cli_options.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
@@ -17,7 +18,6 @@
 #include "hemirad/memory_guard.h"
 #include "hemirad/readout.h"
 #include "hemirad/solver.h"
-#include "export_outputs.h"
 #include "solve_outputs.h"
 
 namespace hemirad::cli {
