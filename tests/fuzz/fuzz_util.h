@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
@@ -10,7 +11,7 @@
 
 namespace hemirad::fuzz {
 
-/// A folder of this process's own under $TMPDIR (made once, left for the OS to clean).
+/// A folder of this process's own under $TMPDIR (made once, removed at exit).
 inline const std::string& scratch_dir() {
     static const std::string dir = [] {
         const char* tmp = std::getenv("TMPDIR");
@@ -18,6 +19,14 @@ inline const std::string& scratch_dir() {
         if (!mkdtemp(pattern.data())) std::abort();
         return pattern;
     }();
+    static const bool cleanup = [] {
+        std::atexit([] {
+            std::error_code ec;
+            std::filesystem::remove_all(dir, ec);
+        });
+        return true;
+    }();
+    (void)cleanup;
     return dir;
 }
 
