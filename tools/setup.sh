@@ -18,6 +18,7 @@ packages=(
   libopenexr-dev libpng-dev zlib1g-dev libgtest-dev
   nlohmann-json3-dev                                       # SCENE.json files
   xvfb xauth                                               # the viewer's tests run under Xvfb
+  clang libclang-rt-14-dev                                 # tools/fuzz.sh: libFuzzer, sanitizers
 )
 
 missing=()

@@ -23,6 +23,10 @@ public:
                 const std::string& help);
     void option(const std::string& name, long* out, const std::string& metavar,
                 const std::string& help);
+    /// An option whose value `set` parses (throwing InputError); `default_text` for --help.
+    void custom(const std::string& name, std::function<void(const std::string&)> set,
+                const std::string& metavar, const std::string& help,
+                const std::string& default_text = "");
     /// Repeatable option; every occurrence appends.
     void multi(const std::string& name, std::vector<std::string>* out, const std::string& metavar,
                const std::string& help);

@@ -59,6 +59,11 @@ struct GridResult {
     dvec3 E_min{0.0}, E_avg{0.0}, E_max{0.0}; ///< per channel
 };
 
+/// The polygons of the grid's surface group, after checking that the group exists (else
+/// InputError listing the groups) and is planar (else InputError). Call it before solving so
+/// that a bad --grid is refused before any output is written.
+std::vector<std::uint32_t> grid_polygons(const Scene& scene, const GridSpec& spec);
+
 /// Evaluates the grid on a push-pulled hierarchy (Solver::solution()): by final gather at each
 /// point when `gather` is given (gather.h), else interpolated between the leaves. Throws
 /// InputError for an unknown group (listing the groups) or a group whose polygons are not

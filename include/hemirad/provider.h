@@ -37,6 +37,9 @@ std::unique_ptr<FormFactorProvider> make_provider(const std::string& name, const
                                                   const Discretisation& disc,
                                                   const ProviderOptions& options);
 const char* provider_names();
+/// Checks the GPU options a user can get wrong (resolutions, LOD bias): InputError naming the
+/// option. validate_options() calls it for the GPU providers, before the memory guard.
+void validate_gpu_options(const GpuProviderOptions& options);
 bool is_gpu_provider(const std::string& name);
 
 } // namespace hemirad

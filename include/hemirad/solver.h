@@ -51,6 +51,9 @@ struct SolverOptions {
     /// at every selection (a node that was too strong early may shoot whole later, when it
     /// holds less power). >= 0; 0 = never refine for parallax.
     double shooter_parallax = 3e-4;
+    /// Refuse to build a hierarchy whose estimated memory exceeds this [bytes]
+    /// (memory_guard.h); 0 = the memory available (MemAvailable, or the cgroup limit).
+    std::uint64_t memory_limit = 0;
 };
 
 /// One shot, as reported after it (also one line of --log).

@@ -96,6 +96,13 @@ void ArgParser::option(const std::string& name, int* out, const std::string& met
     opts_.push_back(o);
 }
 
+void ArgParser::custom(const std::string& name, std::function<void(const std::string&)> set,
+                       const std::string& metavar, const std::string& help,
+                       const std::string& default_text) {
+    Opt o{name, metavar, help, default_text, std::move(set)};
+    opts_.push_back(o);
+}
+
 void ArgParser::multi(const std::string& name, std::vector<std::string>* out,
                       const std::string& metavar, const std::string& help) {
     Opt o{name, metavar, help, "", nullptr};

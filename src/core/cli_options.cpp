@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "hemirad/memory_guard.h"
+
 namespace hemirad {
 
 void add_solver_options(ArgParser& args, SolverOptions& so) {
@@ -30,6 +32,13 @@ void add_solver_options(ArgParser& args, SolverOptions& so) {
     args.option("--shooter-parallax", &so.shooter_parallax, "F",
                 "shoot a node's children instead of the node when its view changes across "
                 "its area by more than this share of its form factor (0 = never)");
+    std::uint64_t* limit = &so.memory_limit;
+    args.custom(
+        "--memory-limit",
+        [limit](const std::string& v) { *limit = parse_memory_size(v, "--memory-limit"); }, "SIZE",
+        "refuse a discretisation whose estimated memory exceeds SIZE (bytes, or 512M, 4G, ...; "
+        "0 = the memory available: MemAvailable, or the cgroup limit if lower)",
+        "0");
     args.section("form factors");
     args.option("--resolution", &so.provider.gpu.resolution, "N",
                 "GPU: fixed hemicube resolution (0 = adaptive)");

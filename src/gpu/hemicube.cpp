@@ -168,9 +168,33 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
     vao_.attribute(1, 0, 2, GL_FLOAT, offsetof(Vertex, param));
     vao_.attribute(2, 0, 1, GL_FLOAT, offsetof(Vertex, polygon));
 
-    // Patch-ID texture: mip m of a 2^D texture holds, at texel (x,y), the patch (x, y, D-m).
+    // What the GL driver can allocate: refuse, naming the option, rather than render into a
+    // framebuffer that is incomplete or was never allocated.
     const int levels = max_depth + 1;
     const int base = 1 << max_depth;
+    {
+        GLint max_tex = 0, max_rb = 0, max_vp[2] = {0, 0};
+        glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_tex);
+        glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_rb);
+        glGetIntegerv(GL_MAX_VIEWPORT_DIMS, max_vp);
+        const long fb_w = 2L * max_res_, fb_h = max_res_ + max_res_ / 2;
+        if (fb_w > max_tex || fb_w > max_rb || fb_w > max_vp[0] || fb_h > max_vp[1])
+            throw InputError("--max-resolution (or --resolution) " + std::to_string(max_res_) +
+                             ": its hemicube needs a " + std::to_string(fb_w) + "x" +
+                             std::to_string(fb_h) + " framebuffer, but this GL driver allows " +
+                             std::to_string(std::min<long>({max_tex, max_rb, max_vp[0]})) +
+                             " pixels at most; use " +
+                             std::to_string(std::min<long>({max_tex, max_rb, max_vp[0]}) / 2) +
+                             " or less");
+        if (base > max_tex)
+            throw InputError("--max-depth " + std::to_string(max_depth) +
+                             ": the patch-ID texture would be " + std::to_string(base) +
+                             " texels wide, but this GL driver allows " + std::to_string(max_tex) +
+                             "; use a smaller --max-depth");
+        while (glGetError() != GL_NO_ERROR) {}
+    }
+
+    // Patch-ID texture: mip m of a 2^D texture holds, at texel (x,y), the patch (x, y, D-m).
     patch_ids_ = gl::Texture::create(GL_TEXTURE_2D);
     patch_ids_.storage_2d(levels, GL_RGBA16UI, base, base);
     std::vector<std::uint16_t> texels;
@@ -197,6 +221,17 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
     depth_ = gl::Renderbuffer::create();
     depth_.storage(GL_DEPTH_COMPONENT32F, 2 * max_res_, max_res_ + max_res_ / 2);
     fbo_ = gl::Framebuffer::create();
+    if (glGetError() == GL_OUT_OF_MEMORY) {
+        const double mib =
+            (double(base) * base * 8 * 4 / 3 + 2.0 * max_res_ * (max_res_ + max_res_ / 2) * 20) /
+            (1 << 20);
+        throw InputError("the GL driver could not allocate the hemicube and patch-ID textures (" +
+                         std::to_string(long(mib)) +
+                         " MiB): use a smaller --max-resolution "
+                         "(or --resolution; now " +
+                         std::to_string(max_res_) + ") or --max-depth (now " +
+                         std::to_string(max_depth) + ")");
+    }
     fbo_.attach(GL_COLOR_ATTACHMENT0, colour_);
     fbo_.attach(GL_DEPTH_ATTACHMENT, depth_);
     fbo_.check_complete();

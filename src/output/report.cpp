@@ -1,11 +1,14 @@
 #include "hemirad/report.h"
 
+#include <climits>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
 
+#include "core/line_reader.h"
 #include "hemirad/error.h"
 #include "hemirad/image.h"
 #include "hemirad/readout.h"
@@ -108,13 +111,23 @@ Json solve_report(Solver& solver, const std::vector<GridResult>& grids, bool lux
 }
 
 std::vector<Probe> read_probes(const std::string& path) {
-    std::ifstream in(path);
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw InputError(path, 0, "is a directory, not a probe file");
+    std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, 0, "cannot open probe file");
+    constexpr std::size_t kMaxLine = 64 * 1024; // a row is 6 numbers
     std::vector<Probe> probes;
     std::string line;
     int number = 0;
-    while (std::getline(in, line)) {
+    bool too_long = false, has_nul = false;
+    while (read_bounded_line(in, line, kMaxLine, too_long, has_nul)) {
+        if (number == INT_MAX) throw InputError(path, number, "too many lines");
         ++number;
+        if (too_long) throw InputError(path, number, "line longer than 64 KiB (not a probe CSV?)");
+        if (has_nul)
+            throw InputError(path, number,
+                             "NUL byte in '" + quoted_excerpt(line) + "' (not a text file?)");
         if (!line.empty() && line.back() == '\r') line.pop_back();
         const auto first = line.find_first_not_of(" \t");
         if (first == std::string::npos || line[first] == '#') continue;
@@ -122,30 +135,42 @@ std::vector<Probe> read_probes(const std::string& path) {
         int count = 0;
         std::stringstream ss(line);
         std::string cell;
-        bool numeric = true;
+        bool numeric = true, text = false;
+        std::string bad_cell;
         while (std::getline(ss, cell, ',')) {
             char* end = nullptr;
             const double x = std::strtod(cell.c_str(), &end);
+            if (end == cell.c_str()) text = true; // no number at all: a header's word
             while (end && (*end == ' ' || *end == '\t')) ++end;
             if (end == cell.c_str() || (end && *end != '\0') || !std::isfinite(x)) {
                 numeric = false;
+                bad_cell = cell;
                 break;
             }
             if (count < 6) v[count] = x;
             ++count;
         }
         if (!numeric) {
-            if (probes.empty() && number == 1) continue; // header line
-            throw InputError(path, number, "expected 6 numbers x,y,z,nx,ny,nz: '" + line + "'");
+            if (probes.empty() && number == 1 && text) continue; // header line
+            throw InputError(path, number,
+                             "'" + quoted_excerpt(bad_cell) +
+                                 "' is not a finite number; expected 6 numbers "
+                                 "x,y,z,nx,ny,nz: '" +
+                                 quoted_excerpt(line) + "'");
         }
         if (count != 6)
-            throw InputError(path, number, "expected 6 numbers x,y,z,nx,ny,nz, got " +
-                                               std::to_string(count) + ": '" + line + "'");
+            throw InputError(path, number,
+                             "expected 6 numbers x,y,z,nx,ny,nz, got " + std::to_string(count) +
+                                 ": '" + quoted_excerpt(line) + "'");
         Probe p{dvec3(v[0], v[1], v[2]), dvec3(v[3], v[4], v[5])};
-        if (glm::length(p.normal) == 0)
-            throw InputError(path, number, "the normal (0,0,0) has no direction");
+        if (!(glm::length(p.normal) > 0) || !std::isfinite(glm::length(p.normal)))
+            throw InputError(path, number,
+                             "the normal (" + num(v[3]) + "," + num(v[4]) + "," + num(v[5]) +
+                                 ") has no finite direction");
         probes.push_back(p);
     }
+    if (in.bad()) throw InputError(path, 0, "cannot read probe file");
+    if (probes.empty()) throw InputError(path, 0, "no probe points (rows x,y,z,nx,ny,nz)");
     return probes;
 }
 

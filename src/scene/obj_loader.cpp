@@ -19,6 +19,7 @@
 // fewer than 3 vertices, a negative Kd or Ke, an MTL library found nowhere.
 #include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -27,6 +28,7 @@
 #include <map>
 #include <set>
 
+#include "core/line_reader.h"
 #include "hemirad/error.h"
 #include "hemirad/scene_io.h"
 
@@ -48,15 +50,30 @@ struct Statement {
     int line = 0;
 };
 
+/// Longest line read [bytes] (a face of kMaxFaceCorners corners "v/t/n" fits many times).
+constexpr std::size_t kMaxLineBytes = std::size_t(16) << 20;
+/// Most corners of one face (more is not a polygon an exporter writes; it bounds the work).
+constexpr std::size_t kMaxFaceCorners = 65536;
+
 std::vector<Statement> read_statements(const std::string& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw InputError(path, 0, "is a directory, not a file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, 0, std::string("cannot open file: ") + std::strerror(errno));
     std::vector<Statement> out;
     std::string line;
     int number = 0;
-    bool continued = false;
-    while (std::getline(in, line)) {
+    bool continued = false, too_long = false, has_nul = false;
+    while (read_bounded_line(in, line, kMaxLineBytes, too_long, has_nul)) {
+        if (number == INT_MAX) throw InputError(path, number, "too many lines");
         ++number;
+        if (too_long)
+            throw InputError(path, number,
+                             "line longer than " + std::to_string(kMaxLineBytes >> 20) +
+                                 " MiB (not a text file?)");
+        if (has_nul)
+            throw InputError(path, number,
+                             "NUL byte in '" + quoted_excerpt(line) + "' (not a text file?)");
         if (!line.empty() && line.back() == '\r') line.pop_back();
         // A lone CR also ends a line (old Mac files): split here.
         std::size_t start = 0;
@@ -67,10 +84,15 @@ std::vector<Statement> read_statements(const std::string& path) {
         std::string rest = line.substr(start);
         const bool continues = !rest.empty() && rest.back() == '\\';
         if (continues) rest.back() = ' ';
-        if (continued)
+        if (continued) {
+            if (out.back().text.size() + rest.size() > kMaxLineBytes)
+                throw InputError(path, out.back().line,
+                                 "statement continued with \\ over more than " +
+                                     std::to_string(kMaxLineBytes >> 20) + " MiB");
             out.back().text += rest;
-        else
+        } else {
             out.push_back({rest, number});
+        }
         continued = continues;
     }
     if (in.bad())
@@ -173,9 +195,10 @@ dvec3 parse_colour(const std::vector<std::string>& w, const std::string& file, i
         const std::string& t = w.size() == 2 ? w[1] : w[std::size_t(k) + 1];
         double x;
         if (!parse_double(t, x))
-            throw InputError(file, line, "cannot parse " + w[0] + " value '" + t + "'");
+            throw InputError(file, line,
+                             "cannot parse " + w[0] + " value '" + quoted_excerpt(t) + "'");
         if (!std::isfinite(x))
-            throw InputError(file, line, w[0] + " value " + t + " is not finite");
+            throw InputError(file, line, w[0] + " value " + quoted_excerpt(t) + " is not finite");
         c[k] = x;
     }
     return c;
@@ -325,12 +348,12 @@ std::uint32_t face_corner(const std::string& token, long vertices, long texcoord
         const long i = std::strtol(idx.c_str(), &e, 10);
         if (idx.empty() || *e != '\0' || i == 0)
             throw InputError(file, line,
-                             "cannot parse face " + std::string(what[part]) + " index '" + token +
-                                 "'");
+                             "cannot parse face " + std::string(what[part]) + " index '" +
+                                 quoted_excerpt(token) + "'");
         const long resolved = i > 0 ? i : counts[part] + 1 + i;
         if (resolved < 1 || resolved > counts[part]) {
-            const std::string text = "face " + std::string(what[part]) + " index " + idx +
-                                     " refers to no " + what[part] + " (" +
+            const std::string text = "face " + std::string(what[part]) + " index " +
+                                     quoted_excerpt(idx) + " refers to no " + what[part] + " (" +
                                      std::to_string(counts[part]) + " defined so far)";
             if (part == 0) throw InputError(file, line, text);
             notes.add(std::string("index ") + what[part], where(file, line),
@@ -428,15 +451,18 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
         const int line = st.line;
         if (key == "v") {
             if (w.size() < 4)
-                throw InputError(path, line, "vertex needs 3 coordinates: '" + st.text + "'");
+                throw InputError(path, line,
+                                 "vertex needs 3 coordinates: '" + quoted_excerpt(st.text) + "'");
             dvec3 p;
             for (int k = 0; k < 3; ++k) {
                 const std::string& t = w[std::size_t(k) + 1];
                 if (!parse_double(t, p[k]))
-                    throw InputError(path, line, "cannot parse vertex coordinate '" + t + "'");
+                    throw InputError(path, line,
+                                     "cannot parse vertex coordinate '" + quoted_excerpt(t) + "'");
                 if (!std::isfinite(p[k]))
                     throw InputError(path, line,
-                                     "vertex coordinate " + t + " is not a finite number");
+                                     "vertex coordinate " + quoted_excerpt(t) +
+                                         " is not a finite number");
             }
             vertices.push_back(p); // a 4th value (w) or vertex colours are not used
         } else if (key == "vt") {
@@ -445,7 +471,13 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
             ++normals;
         } else if (key == "f" || key == "fo") {
             if (w.size() < 4)
-                throw InputError(path, line, "face needs at least 3 vertices: '" + st.text + "'");
+                throw InputError(path, line,
+                                 "face needs at least 3 vertices: '" + quoted_excerpt(st.text) +
+                                     "'");
+            if (w.size() - 1 > kMaxFaceCorners)
+                throw InputError(path, line,
+                                 "face has " + std::to_string(w.size() - 1) +
+                                     " corners, more than " + std::to_string(kMaxFaceCorners));
             Face f;
             f.line = line;
             f.material = material;

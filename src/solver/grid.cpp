@@ -50,8 +50,7 @@ GridSpec parse_grid_spec(const std::string& text) {
     return g;
 }
 
-GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec, const FinalGather* gather) {
-    const Scene& scene = h.scene();
+std::vector<std::uint32_t> grid_polygons(const Scene& scene, const GridSpec& spec) {
     const int group = scene.find_group(spec.group);
     if (group < 0) {
         std::string names;
@@ -63,24 +62,30 @@ GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec, const FinalGa
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
         if (scene.polygons[p].group == std::uint32_t(group)) polys.push_back(p);
     HEMIRAD_CHECK(!polys.empty());
-
-    GridResult r;
-    r.spec = spec;
     const Polygon& first = scene.polygons[polys[0]];
-    r.normal = first.normal;
     // Coplanar and facing the same way, within a tolerance relative to the scene's size.
     const double tol = 1e-6 * std::max(scene.bounds().diagonal(), 1e-300);
     for (std::uint32_t p : polys) {
         const Polygon& poly = scene.polygons[p];
-        bool planar = glm::dot(poly.normal, r.normal) > 1.0 - 1e-6;
+        bool planar = glm::dot(poly.normal, first.normal) > 1.0 - 1e-6;
         for (int k = 0; k < poly.count && planar; ++k)
-            planar = std::abs(glm::dot(poly.v[k] - first.v[0], r.normal)) <= tol;
+            planar = std::abs(glm::dot(poly.v[k] - first.v[0], first.normal)) <= tol;
         if (!planar)
             throw InputError("--grid: surface group '" + spec.group + "' is not planar: polygon " +
                              std::to_string(p) + " is not in the plane of polygon " +
                              std::to_string(polys[0]) + " (or faces another way); a grid needs "
                              "coplanar polygons");
     }
+    return polys;
+}
+
+GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec, const FinalGather* gather) {
+    const Scene& scene = h.scene();
+    const std::vector<std::uint32_t> polys = grid_polygons(scene, spec);
+    GridResult r;
+    r.spec = spec;
+    const Polygon& first = scene.polygons[polys[0]];
+    r.normal = first.normal;
     dvec3 u = first.v[1] - first.v[0];
     u -= glm::dot(u, r.normal) * r.normal;
     r.axis_u = glm::normalize(u);

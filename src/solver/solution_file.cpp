@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -334,6 +335,11 @@ SolutionFile parse_solution(const std::string& bytes, const std::string& path) {
 }
 
 SolutionFile read_solution(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw InputError(path, 0, "is a directory, not a solution file");
+    if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+        throw InputError(path, 0, "is not a regular file (a solution file is read whole)");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, 0, "cannot open solution file");
     std::ostringstream s;

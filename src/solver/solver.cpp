@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "hemirad/error.h"
+#include "hemirad/memory_guard.h"
 
 namespace hemirad {
 
@@ -46,6 +47,7 @@ void validate_options(const SolverOptions& o) {
     if (o.hierarchy.max_depth < 0 || o.hierarchy.max_depth > kMaxDepth)
         throw InputError("--max-depth " + std::to_string(o.hierarchy.max_depth) + " must be in 0.." +
                          std::to_string(kMaxDepth));
+    if (is_gpu_provider(o.ff)) validate_gpu_options(o.provider.gpu);
 }
 
 namespace {
@@ -65,6 +67,13 @@ bool finite(const dvec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+/// The discretisation, once the memory guard has found that it fits (memory_guard.h).
+Discretisation guarded_discretise(const Scene& scene, const SolverOptions& options) {
+    Discretisation d = discretise(scene, options.hierarchy);
+    check_memory(scene, d, options);
+    return d;
+}
+
 } // namespace
 
 const char* to_string(StopReason r) {
@@ -80,7 +89,7 @@ const char* to_string(StopReason r) {
 
 Solver::Solver(const Scene& scene, const SolverOptions& options)
     : scene_(&scene), options_((validate_options(options), options)),
-      hierarchy_(scene, discretise(scene, options.hierarchy)) {
+      hierarchy_(scene, guarded_discretise(scene, options)) {
     provider_ = make_provider(options.ff, scene, hierarchy_.discretisation(), options.provider);
     init();
 }
@@ -88,7 +97,7 @@ Solver::Solver(const Scene& scene, const SolverOptions& options)
 Solver::Solver(const Scene& scene, const SolverOptions& options,
                std::unique_ptr<FormFactorProvider> provider)
     : scene_(&scene), options_((validate_options(options), options)),
-      hierarchy_(scene, discretise(scene, options.hierarchy)), provider_(std::move(provider)) {
+      hierarchy_(scene, guarded_discretise(scene, options)), provider_(std::move(provider)) {
     HEMIRAD_CHECK(provider_ != nullptr);
     init();
 }

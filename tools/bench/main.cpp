@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -101,6 +102,7 @@ struct Spec {
     double paper_seconds = 0, goal_seconds = 0;
     bool overhead = false;     ///< also measure the bare hemicube (shot_overhead_ratio)
     bool accuracy = false;     ///< accuracy at points against `hemirad reference` instead
+    bool soak = false;         ///< a long run: resident memory, GL objects, log (run_soak)
 };
 
 validation::BenchRoomOptions room402() { return {2, 6, 7, 0.6}; }
@@ -137,6 +139,14 @@ std::vector<Spec> experiments() {
     acc.description = "closed 1 m room, small light under the ceiling: as cornell_accuracy";
     acc.scene = [] { return make_builtin("room"); };
     v.push_back(acc);
+    // Long runs: 10^5 shots on room402 (a solver that stops is rebuilt and carries on).
+    Spec soak{"soak", "room402, 10^5 shots: resident memory every 1000 shots, GL objects, log",
+              room(room402())};
+    soak.target_leaves = 47500;
+    soak.max_depth = 6;
+    soak.shots = 100000;
+    soak.soak = true;
+    v.push_back(soak);
     // Scaling: seconds per shot vs leaf patches at 402 polygons, at a fixed hemicube
     // resolution (256) so that the pixels shaded stay the same and what grows is the
     // geometry, the reduction and the update...
@@ -275,9 +285,175 @@ void run_accuracy(const Spec& spec) {
     std::printf("JSON %s\n", j.dump(0).c_str());
 }
 
+// Resident set of this process now [MiB] (VmRSS).
+double rss_mib() {
+    std::ifstream f("/proc/self/status");
+    std::string line;
+    while (std::getline(f, line))
+        if (line.rfind("VmRSS:", 0) == 0) return std::atof(line.c_str() + 6) / 1024.0;
+    return 0;
+}
+
+// Live GL objects of the current context, by probing names 1..kNames with glIs* (Mesa hands
+// out names from 1 up, so a leak shows as a growing count).
+struct GlObjects {
+    long buffers = 0, textures = 0, framebuffers = 0, renderbuffers = 0, vertex_arrays = 0,
+         programs = 0, shaders = 0;
+    long total() const {
+        return buffers + textures + framebuffers + renderbuffers + vertex_arrays + programs +
+               shaders;
+    }
+};
+GlObjects count_gl_objects() {
+    constexpr GLuint kNames = 4096;
+    GlObjects o;
+    for (GLuint n = 1; n <= kNames; ++n) {
+        o.buffers += glIsBuffer(n);
+        o.textures += glIsTexture(n);
+        o.framebuffers += glIsFramebuffer(n);
+        o.renderbuffers += glIsRenderbuffer(n);
+        o.vertex_arrays += glIsVertexArray(n);
+        o.programs += glIsProgram(n);
+        o.shaders += glIsShader(n);
+    }
+    return o;
+}
+Json gl_json(const GlObjects& o) {
+    Json j = Json::object();
+    j["buffers"] = o.buffers;
+    j["textures"] = o.textures;
+    j["framebuffers"] = o.framebuffers;
+    j["renderbuffers"] = o.renderbuffers;
+    j["vertex_arrays"] = o.vertex_arrays;
+    j["programs"] = o.programs;
+    j["shaders"] = o.shaders;
+    j["total"] = o.total();
+    return j;
+}
+
+// Least-squares slope of y over x.
+double slope(const std::vector<double>& x, const std::vector<double>& y) {
+    const double n = double(x.size());
+    if (n < 2) return 0;
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (std::size_t i = 0; i < x.size(); ++i)
+        sx += x[i], sy += y[i], sxx += x[i] * x[i], sxy += x[i] * y[i];
+    const double d = n * sxx - sx * sx;
+    return d != 0 ? (n * sxy - sx * sy) / d : 0;
+}
+
+// The soak: spec.shots shots on spec.scene, resident memory (VmRSS) and live GL objects
+// sampled every 1000 shots, one JSON line per shot streamed to a log file (flushed per line,
+// as `hemirad solve --log` does; its size on disk is checked at each sample). A solver that
+// stops (converged, nothing left to shoot) is rebuilt and carries on, so that construction
+// and destruction are soaked too. The slope is fitted over the samples after the first 10 %
+// (the first shots fill caches: hemicube layouts, shader variants, the allocator's pools).
+void run_soak(const Spec& spec) {
+    auto context = gl::Context::create();
+    const Scene scene = spec.scene();
+    SolverOptions so;
+    so.tolerance = 1e-9;
+    so.max_shots = spec.shots;
+    so.hierarchy.max_depth = spec.max_depth;
+    so.hierarchy.patch_size = patch_size_for(scene, spec.target_leaves, spec.max_depth);
+    so.provider.gpu.use_current_context = true;
+    const std::string log_path = (std::filesystem::temp_directory_path() /
+                                  ("hemirad-soak-" + std::to_string(getpid()) + ".jsonl"))
+                                     .string();
+    std::ofstream log(log_path, std::ios::trunc);
+    if (!log) throw RuntimeError("hemirad-bench: cannot write " + log_path);
+    constexpr long kEvery = 1000;
+    std::vector<double> at, rss;
+    std::vector<long> gl_total;
+    long done = 0, rebuilt = 0;
+    std::uint64_t log_bytes = 0, max_unwritten = 0;
+    GlObjects gl_start, gl_end;
+    const auto t0 = Clock::now();
+    auto solver = std::make_unique<Solver>(scene, so);
+    gl_start = count_gl_objects();
+    const std::uint64_t leaves = solver->hierarchy().leaf_count();
+    while (done < spec.shots) {
+        if (!solver->step()) {
+            solver.reset(); // the old one's GL objects go first
+            solver = std::make_unique<Solver>(scene, so);
+            ++rebuilt;
+            continue;
+        }
+        ++done;
+        const ShotRecord& r = solver->last_shot();
+        Json j = Json::object();
+        j["shot"] = done;
+        j["shooter_power"] = r.shooter_power;
+        j["links"] = r.links;
+        j["error_bound"] = r.error_bound;
+        j["rss_mib"] = done % kEvery == 0 ? rss_mib() : -1.0;
+        const std::string line = j.dump(0) + "\n";
+        log << line << std::flush;
+        log_bytes += line.size();
+        if (done % kEvery == 0) {
+            at.push_back(double(done));
+            rss.push_back(rss_mib());
+            gl_total.push_back(count_gl_objects().total());
+            std::error_code ec;
+            const std::uint64_t on_disk = std::filesystem::file_size(log_path, ec);
+            max_unwritten = std::max(max_unwritten, log_bytes - std::min(log_bytes, on_disk));
+            if (done % (10 * kEvery) == 0)
+                std::fprintf(stderr, "    soak: %ld shots, %.1f s, RSS %.1f MiB, GL objects %ld\n",
+                             done, since(t0), rss.back(), gl_total.back());
+        }
+    }
+    gl_end = count_gl_objects();
+    solver.reset();
+    const GlObjects gl_after = count_gl_objects();
+    const double seconds = since(t0);
+    const std::size_t skip = at.size() / 10;
+    const std::vector<double> x(at.begin() + long(skip), at.end());
+    const std::vector<double> y(rss.begin() + long(skip), rss.end());
+    const double per_shot = slope(x, y); // MiB per shot
+    const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
+
+    Json j = Json::object();
+    j["name"] = spec.name;
+    j["description"] = spec.description;
+    j["polygons"] = scene.polygons.size();
+    j["leaf_patches"] = leaves;
+    j["shots"] = done;
+    j["solvers_rebuilt"] = rebuilt;
+    j["seconds"] = seconds;
+    j["seconds_per_shot"] = seconds / double(std::max(done, 1L));
+    j["rss_sample_every"] = kEvery;
+    j["rss_first_mib"] = rss.empty() ? 0.0 : rss.front();
+    j["rss_last_mib"] = rss.empty() ? 0.0 : rss.back();
+    j["rss_min_after_warmup_mib"] = y.empty() ? 0.0 : *lo;
+    j["rss_max_after_warmup_mib"] = y.empty() ? 0.0 : *hi;
+    j["rss_slope_kib_per_1000_shots"] = per_shot * 1024 * 1000;
+    j["rss_slope_mib_per_1e5_shots"] = per_shot * 1e5;
+    Json samples = Json::array();
+    for (double v : rss) samples.push_back(v);
+    j["rss_mib_samples"] = samples;
+    j["gl_objects_start"] = gl_json(gl_start);
+    j["gl_objects_end"] = gl_json(gl_end);
+    j["gl_objects_after_solver"] = gl_json(gl_after);
+    j["gl_objects_max_during"] =
+        gl_total.empty() ? 0L : *std::max_element(gl_total.begin(), gl_total.end());
+    j["log_bytes"] = log_bytes;
+    j["log_max_bytes_not_on_disk"] = max_unwritten;
+    j["peak_rss_mib"] = peak_rss_mib();
+    std::printf("JSON %s\n", j.dump(0).c_str());
+    std::printf("ROW %-22s %6zu %9llu %6ld %8.3f %8.2f  RSS %.1f -> %.1f MiB, slope %.2f KiB/1000 "
+                "shots, GL objects %ld -> %ld (%ld after), log unwritten max %llu bytes\n",
+                spec.name.c_str(), scene.polygons.size(), (unsigned long long)leaves, done, seconds,
+                1e3 * seconds / double(std::max(done, 1L)), rss.empty() ? 0.0 : rss.front(),
+                rss.empty() ? 0.0 : rss.back(), per_shot * 1024 * 1000, gl_start.total(),
+                gl_end.total(), gl_after.total(), (unsigned long long)max_unwritten);
+    std::fflush(stdout);
+    std::remove(log_path.c_str());
+}
+
 // Runs one experiment in this process; prints "JSON ..." and "ROW ..." lines on stdout.
 void run_child(const Spec& spec) {
     if (spec.accuracy) return run_accuracy(spec);
+    if (spec.soak) return run_soak(spec);
     auto context = gl::Context::create();
     const auto t_scene = Clock::now();
     const Scene scene = spec.scene();
@@ -442,7 +618,7 @@ int run(int argc, char** argv) {
                    "Benchmarks the solver (paper 002's scenes, the Cornell box, scaling).\n"
                    "Each experiment runs in its own process (peak memory per experiment).");
     args.option("--out", &out, "FILE", "write the results as JSON to FILE");
-    args.option("--only", &only, "NAME,...", "run only these experiments (default: all)");
+    args.option("--only", &only, "NAME,...", "run only these experiments (default: all but soak)");
     args.flag("--quiet", &quiet, "print nothing but errors");
     args.flag("--child", &child, "internal: run the experiments in this process");
     if (!args.parse(argc, argv)) return 0;
@@ -450,7 +626,8 @@ int run(int argc, char** argv) {
     const std::vector<Spec> all = experiments();
     std::vector<const Spec*> chosen;
     if (only.empty()) {
-        for (const Spec& s : all) chosen.push_back(&s);
+        for (const Spec& s : all)
+            if (!s.soak) chosen.push_back(&s); // minutes long: only when asked for
     } else {
         for (const std::string& name : split(only)) {
             auto it = std::find_if(all.begin(), all.end(),

@@ -9,13 +9,15 @@
 #include <sstream>
 
 #include "commands.h"
+#include "export_outputs.h"
 #include "hemirad/cli_options.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
+#include "hemirad/grid.h"
 #include "hemirad/json.h"
+#include "hemirad/memory_guard.h"
 #include "hemirad/readout.h"
 #include "hemirad/solver.h"
-#include "export_outputs.h"
 #include "solve_outputs.h"
 
 namespace hemirad::cli {
@@ -97,11 +99,16 @@ int cmd_solve(int argc, char** argv) {
     install_interrupt_handler();
     const Scene scene = load_scene(scene_name, builtin, obj);
     print_warnings(scene, quiet);
+    // Everything that needs only the scene is checked before the first output is opened.
+    for (const GridSpec& g : grid_specs) grid_polygons(scene, g);
+    check_image_camera(out.images, scene);
     // Before the solver is built: a resumed run takes the saved options it was not given.
     const std::optional<SolutionFile> resumed =
         prepare_resume(exports, args, scene, scene_name, so);
     const std::vector<Probe> probes = probes_in.empty() ? std::vector<Probe>{}
                                                         : read_probes(probes_in);
+    // The memory guard, before GL starts (the Solver checks again: memory_guard.h).
+    check_memory(scene, discretise(scene, so.hierarchy), so);
     // One GL context for the whole run: the GPU provider and the image outputs share it.
     std::unique_ptr<gl::Context> context;
     if (is_gpu_provider(so.ff) || out.needs_gl()) {

@@ -155,6 +155,10 @@ void validate_image_options(const ImageOutputOptions& o) {
     if (is_camera_list(o.camera)) parse_camera(o.camera);
 }
 
+void check_image_camera(const ImageOutputOptions& o, const Scene& scene) {
+    if (image_outputs_need_gl(o) && !o.camera.empty()) choose_camera(o.camera, scene);
+}
+
 bool image_outputs_need_gl(const ImageOutputOptions& o) {
     return !o.files.empty() || !o.false_colour.empty();
 }

@@ -33,6 +33,8 @@ void add_image_options(ArgParser& args, ImageOutputOptions& o);
 /// Checks everything that needs no scene (extensions, sizes, camera syntax); InputError.
 void validate_image_options(const ImageOutputOptions& o);
 bool image_outputs_need_gl(const ImageOutputOptions& o);
+/// Checks what needs the scene (a --camera NAME it has), before solving; InputError.
+void check_image_camera(const ImageOutputOptions& o, const Scene& scene);
 /// Writes every image asked for, from the solver's current solution (GL context current).
 void write_image_outputs(const ImageOutputOptions& o, Solver& solver, bool quiet);
 
