@@ -149,8 +149,8 @@ class Reader {
     void only_keys(const json& o, const std::string& at,
                    std::initializer_list<const char*> allowed) const {
         if (!o.is_object()) fail(at, "expected an object {...}, got " + dump(o));
-        for (const auto& [k, v] : o.items()) {
-            (void)v;
+        for (const auto& item : o.items()) {
+            const std::string& k = item.key(); // a plain name: clang 14 cannot capture bindings
             if (std::none_of(allowed.begin(), allowed.end(),
                              [&](const char* a) { return k == a; })) {
                 std::string list;
