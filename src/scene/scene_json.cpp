@@ -316,12 +316,13 @@ Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
     json doc;
     try {
         doc = json::parse(text);
-    } catch (const json::parse_error& e) {
-        // "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
+    } catch (const json::exception& e) {
+        // "[json.exception.parse_error.101] parse error at line 3, column 5: ...", or
+        // "[json.exception.out_of_range.406] number overflow parsing '1e999'" (found by fuzzing)
         std::string m = e.what();
-        const auto at = m.find("parse error");
+        const auto tag = m.find("] ");
         throw InputError(path, 0,
-                         "not valid JSON: " + (at == std::string::npos ? m : m.substr(at)));
+                         "not valid JSON: " + (tag == std::string::npos ? m : m.substr(tag + 2)));
     }
     KeyLines locator(text);
     json::sax_parse(text, &locator);
