@@ -79,4 +79,11 @@ Scene make_bench_room(const BenchRoomOptions& options = {});
 /// Polygon count that make_bench_room(options) produces.
 int bench_room_polygons(const BenchRoomOptions& options);
 
+/// A furnished open-plan floor of about `triangles` triangles (>= 1000), for the scale
+/// benchmarks (hemirad-bench scale_triangles_1e5, _1e6): make_bench_room with as many
+/// table-and-chair sets as it takes (a 4 m grid; one ceiling light per 4 sets, at least 6; one
+/// cabinet per 8 sets, at least 7), every quad split into two triangles, as an exporter that
+/// writes only triangles would. Deterministic; groups and materials as make_bench_room.
+Scene make_furnished_floor(long triangles);
+
 } // namespace hemirad::validation

@@ -1,6 +1,7 @@
 #include "gpu/hemicube.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numbers>
 
@@ -118,6 +119,17 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
     const Bounds b = scene.bounds();
     origin_ = 0.5 * (b.lo + b.hi);
     near_ = 1e-5 * b.diagonal();
+    eps_ = 1e-9 * b.diagonal();
+    for (std::uint32_t i = 0; i < scene.polygons.size(); i += kClusterSize) {
+        Cluster c{i, std::min<std::uint32_t>(i + kClusterSize, std::uint32_t(scene.polygons.size())),
+                  dvec3(1e300), dvec3(-1e300)};
+        for (std::uint32_t j = c.begin; j < c.end; ++j)
+            for (int k = 0; k < scene.polygons[j].count; ++k) {
+                c.lo = glm::min(c.lo, scene.polygons[j].v[k]);
+                c.hi = glm::max(c.hi, scene.polygons[j].v[k]);
+            }
+        clusters_.push_back(c);
+    }
 
     // Vertices: every polygon as one triangle or two, with its (u,v) parameters.
     std::vector<Vertex> verts;
@@ -250,7 +262,7 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
     const double near =
         std::min(near_, 1e-3 * std::sqrt(std::max(shooter.geometry.area, 1e-300)));
     const dvec3 eye = c - origin_;
-    const double eps = 1e-9 * scene_->bounds().diagonal();
+    const double eps = eps_;
 
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
     glDisable(GL_BLEND);
@@ -280,7 +292,8 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
     glUniform1i(9, int(shooter.address.polygon));
     glUniform3f(1, float(eye.x), float(eye.y), float(eye.z));
 
-    drawn_ = 0;
+    drawn_ = ranges_ = 0;
+    cull_seconds_ = 0;
     for (int f = 0; f < 5; ++f) {
         const auto& face = layout.faces[f];
         struct { dvec3 dir, up; } v{frame.dir[f], frame.up[f]};
@@ -293,27 +306,56 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
         const dvec3 side = glm::cross(v.dir, v.up); // screen x
         dvec3 planes[4] = {v.dir + side, v.dir - side, v.dir + v.up, v.dir - v.up};
         if (f != 0) planes[2] = v.up; // the bottom of a side face is the shooter's plane
+        const auto t_cull = std::chrono::steady_clock::now();
         draw_first_.clear();
         draw_count_.clear();
-        for (std::size_t i = 0; i < scene_->polygons.size(); ++i) {
-            if (i == shooter.address.polygon) continue;
-            const Polygon& p = scene_->polygons[i];
-            bool above = false;
-            for (int k = 0; k < p.count; ++k) above |= glm::dot(p.v[k] - c, N) > eps;
-            if (!above) continue;
-            bool outside = false;
+        // Range of dot(x - c, n) over a box: min and max over its corners.
+        const auto box_range = [&](const Cluster& k, const dvec3& n) {
+            const dvec3 a = (k.lo - c) * n, b = (k.hi - c) * n;
+            const dvec3 lo = glm::min(a, b), hi = glm::max(a, b);
+            return std::pair{lo.x + lo.y + lo.z, hi.x + hi.y + hi.z};
+        };
+        const std::uint32_t own = shooter.address.polygon;
+        for (const Cluster& k : clusters_) {
+            // Wholly behind the shooter's plane, or outside a side plane: nothing to draw.
+            // Wholly in front and inside every side plane: every polygon is drawn.
+            const auto [nlo, nhi] = box_range(k, N);
+            if (nhi <= eps) continue;
+            bool all_in = nlo > eps, all_out = false;
             for (const dvec3& pl : planes) {
-                bool all_out = true;
-                for (int k = 0; k < p.count && all_out; ++k)
-                    all_out = glm::dot(p.v[k] - c, pl) < -eps;
-                if (all_out) { outside = true; break; }
+                const auto [lo, hi] = box_range(k, pl);
+                all_out |= hi < -eps;
+                all_in &= lo >= -eps;
             }
-            if (outside) continue;
-            draw_first_.push_back(first_[i]);
-            draw_count_.push_back(count_[i]);
+            if (all_out) continue;
+            if (all_in) {
+                if (own >= k.begin && own < k.end) {
+                    draw_polygons(k.begin, own);
+                    draw_polygons(own + 1, k.end);
+                } else {
+                    draw_polygons(k.begin, k.end);
+                }
+                continue;
+            }
+            for (std::uint32_t i = k.begin; i < k.end; ++i) {
+                if (i == own) continue;
+                const Polygon& p = scene_->polygons[i];
+                bool above = false;
+                for (int j = 0; j < p.count; ++j) above |= glm::dot(p.v[j] - c, N) > eps;
+                if (!above) continue;
+                bool outside = false;
+                for (const dvec3& pl : planes) {
+                    bool all_out_p = true;
+                    for (int j = 0; j < p.count && all_out_p; ++j)
+                        all_out_p = glm::dot(p.v[j] - c, pl) < -eps;
+                    if (all_out_p) { outside = true; break; }
+                }
+                if (!outside) draw_polygons(i, i + 1);
+            }
         }
+        cull_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t_cull).count();
         if (draw_first_.empty()) continue;
-        drawn_ += draw_first_.size();
+        ranges_ += draw_first_.size();
         glViewport(face.x, face.y, face.w, face.h);
         glUniformMatrix4fv(0, 1, GL_FALSE, glm::value_ptr(vp));
         glMultiDrawArrays(GL_TRIANGLES, draw_first_.data(), draw_count_.data(),
@@ -327,6 +369,17 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
     glBindVertexArray(0);
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void HemicubeRenderer::draw_polygons(std::uint32_t begin, std::uint32_t end) {
+    if (begin >= end) return;
+    drawn_ += end - begin;
+    const GLint first = first_[begin];
+    const GLsizei count = first_[end - 1] + count_[end - 1] - first;
+    if (!draw_first_.empty() && draw_first_.back() + draw_count_.back() == first)
+        draw_count_.back() += count;
+    else
+        draw_first_.push_back(first), draw_count_.push_back(count);
 }
 
 void HemicubeRenderer::read_back(const HemicubeLayout& layout, std::vector<float>& rgba) {

@@ -67,7 +67,9 @@ public:
 
     /// Renders the hemicube at the shooter's centre along its normal. Polygons wholly behind
     /// the shooter's plane, and the shooter's own polygon, are not drawn; per face, polygons
-    /// outside the face's frustum are skipped on the CPU.
+    /// outside the face's frustum are skipped on the CPU, first by clusters of consecutive
+    /// polygons (their bounding box wholly in or wholly out), then one by one; consecutive
+    /// polygons drawn become one range of the multi-draw.
     /// angle_method: 0 the arccos table, 1 GLSL acos, 2 GLSL atan (hemicube.frag).
     void render(const Shooter& shooter, const HemicubeLayout& layout, double lod_bias,
                 int angle_method);
@@ -76,6 +78,8 @@ public:
 
     int max_resolution() const { return max_res_; }
     std::size_t polygons_drawn() const { return drawn_; } ///< over the five faces, last render
+    std::size_t draw_ranges() const { return ranges_; }   ///< multi-draw entries, last render
+    double cull_seconds() const { return cull_seconds_; } ///< CPU culling, last render [s]
 
 private:
     const Scene* scene_;
@@ -84,9 +88,20 @@ private:
     int max_res_ = 0;
     std::vector<GLint> first_;   ///< first vertex of each polygon in the vertex buffer
     std::vector<GLsizei> count_; ///< its vertex count (3 or 6)
+    /// kClusterSize consecutive polygons and their bounding box, for culling.
+    struct Cluster {
+        std::uint32_t begin, end;
+        dvec3 lo, hi;
+    };
+    static constexpr std::uint32_t kClusterSize = 64;
+    std::vector<Cluster> clusters_;
+    double eps_ = 0;      ///< 1e-9 x the scene's diagonal: "in front of a plane" [scene units]
     std::vector<GLint> draw_first_;
     std::vector<GLsizei> draw_count_;
-    std::size_t drawn_ = 0;
+    std::size_t drawn_ = 0, ranges_ = 0;
+    double cull_seconds_ = 0;
+    /// Adds polygons [begin, end) to the draw list, extending the last range if they follow it.
+    void draw_polygons(std::uint32_t begin, std::uint32_t end);
     gl::Buffer vertices_, polygons_, acos_table_;
     gl::VertexArray vao_;
     gl::Texture patch_ids_, colour_;

@@ -85,7 +85,8 @@ public:
         auto t0 = Clock::now();
         const int angle = options_.atan_angle ? 2 : options_.builtin_acos ? 1 : 0;
         renderer_->render(shooter, layout, options_.lod_bias, angle);
-        timings_.push_back({"render", since(t0)});
+        timings_.push_back({"cull", renderer_->cull_seconds()});
+        timings_.push_back({"render", since(t0) - renderer_->cull_seconds()});
         t0 = Clock::now();
         renderer_->read_back(layout, pixels_);
         last_width_ = layout.width;

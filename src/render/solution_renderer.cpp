@@ -33,7 +33,6 @@
 #include <cstdint>
 #include <numbers>
 #include <sstream>
-#include <unordered_map>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -41,6 +40,7 @@
 
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "render/point_weld.h"
 #include "hemirad/error.h"
 
 namespace hemirad {
@@ -159,34 +159,6 @@ private:
     GLint depth_func_ = GL_LESS, front_face_ = GL_CCW, cull_face_mode_ = GL_BACK;
     GLint blend_func_[4] = {GL_ONE, GL_ZERO, GL_ONE, GL_ZERO}; ///< src/dst RGB, src/dst alpha
     GLboolean depth_mask_ = GL_TRUE, depth_test_ = GL_FALSE, cull_ = GL_FALSE, blend_ = GL_FALSE;
-};
-
-/// Union-find over vertex indices (path halving), for welding.
-struct UnionFind {
-    std::vector<std::uint32_t> parent;
-    explicit UnionFind(std::size_t n) : parent(n) {
-        for (std::size_t i = 0; i < n; ++i) parent[i] = std::uint32_t(i);
-    }
-    std::uint32_t find(std::uint32_t a) {
-        while (parent[a] != a) a = parent[a] = parent[parent[a]];
-        return a;
-    }
-    void unite(std::uint32_t a, std::uint32_t b) {
-        a = find(a), b = find(b);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-};
-
-struct CellKey {
-    std::int64_t x, y, z;
-    bool operator==(const CellKey&) const = default;
-};
-struct CellHash {
-    std::size_t operator()(const CellKey& k) const {
-        std::uint64_t h = 1469598103934665603ull;
-        for (std::int64_t v : {k.x, k.y, k.z}) h = (h ^ std::uint64_t(v)) * 1099511628211ull;
-        return std::size_t(h);
-    }
 };
 
 /// cos(1 degree): polygons whose normals differ by more than this are never welded.
@@ -336,37 +308,21 @@ void SolutionRenderer::Impl::build(const Hierarchy& h) {
     // Weld boundary vertices (see the header comment): a hash grid of cells of the weld
     // tolerance; each vertex looks at the 27 cells around its own.
     const double tol = std::max(kWeldRelativeTolerance * diagonal, 1e-300);
-    UnionFind uf(vertex_count);
-    std::unordered_map<CellKey, std::vector<std::uint32_t>, CellHash> cells;
     std::vector<std::uint32_t> polygon_of(vertex_count);
     for (std::size_t p = 0; p < s.polygons.size(); ++p)
         std::fill_n(polygon_of.begin() + grids[p].vertex_base, grid_vertex_count(grids[p]),
                     std::uint32_t(p));
-    for (std::uint32_t v = 0; v < vertex_count; ++v) {
-        if (!boundary[v]) continue;
-        const dvec3 c = glm::floor(world[v] / tol);
-        const CellKey key{std::int64_t(c.x), std::int64_t(c.y), std::int64_t(c.z)};
-        const Polygon& pv = s.polygons[polygon_of[v]];
-        for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const auto it = cells.find({key.x + dx, key.y + dy, key.z + dz});
-                    if (it == cells.end()) continue;
-                    for (std::uint32_t w : it->second) {
-                        const Polygon& pw = s.polygons[polygon_of[w]];
-                        if (polygon_of[w] == polygon_of[v] || pw.material != pv.material ||
-                            glm::dot(pw.normal, pv.normal) < kWeldCosAngle ||
-                            glm::length(world[w] - world[v]) > tol)
-                            continue;
-                        uf.unite(v, w);
-                    }
-                }
-        cells[key].push_back(v);
-    }
+    const std::vector<std::uint32_t> root =
+        weld_points(world, boundary, tol, [&](std::uint32_t v, std::uint32_t w) {
+            const Polygon& pv = s.polygons[polygon_of[v]];
+            const Polygon& pw = s.polygons[polygon_of[w]];
+            return polygon_of[w] != polygon_of[v] && pw.material == pv.material &&
+                   glm::dot(pw.normal, pv.normal) >= kWeldCosAngle;
+        });
     vertex_node.assign(vertex_count, 0);
     std::size_t nodes = 0;
     for (std::uint32_t v = 0; v < vertex_count; ++v) {
-        const std::uint32_t r = uf.find(v);
+        const std::uint32_t r = root[v];
         vertex_node[v] = r == v ? std::uint32_t(nodes++) : vertex_node[r]; // roots come first
         verts[v].node = vertex_node[v];
     }

@@ -228,4 +228,30 @@ Scene make_bench_room(const BenchRoomOptions& o) {
     return s;
 }
 
+Scene make_furnished_floor(long triangles) {
+    if (triangles < 1000 || triangles > 100000000)
+        throw InputError("furnished floor: triangles must be in [1000, 1e8], not " +
+                         std::to_string(triangles));
+    // Two triangles per quad: 2 * (6 + sets/4 + 174 sets + 6 sets/8) ~ triangles.
+    const int sets = std::max(1, int(std::lround((triangles / 2.0 - 6.0) / 175.0)));
+    const BenchRoomOptions o{sets, std::max(6, sets / 4), std::max(7, sets / 8), 0.6};
+    const Scene quads = make_bench_room(o);
+    Scene s;
+    s.source = "validation:furnished_floor";
+    s.materials = quads.materials;
+    s.groups = quads.groups;
+    s.cameras = quads.cameras;
+    s.polygons.reserve(2 * quads.polygons.size());
+    for (const Polygon& p : quads.polygons) {
+        if (p.is_triangle()) {
+            add_polygon(s, {p.v[0], p.v[1], p.v[2]}, p.material, p.group);
+            continue;
+        }
+        add_polygon(s, {p.v[0], p.v[1], p.v[2]}, p.material, p.group);
+        add_polygon(s, {p.v[0], p.v[2], p.v[3]}, p.material, p.group);
+    }
+    finish_scene(s, s.source);
+    return s;
+}
+
 } // namespace hemirad::validation

@@ -31,6 +31,7 @@
 #include "hemirad/json.h"
 #include "hemirad/readout.h"
 #include "hemirad/reference.h"
+#include "hemirad/render.h"
 #include "hemirad/report.h"
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"
@@ -103,6 +104,9 @@ struct Spec {
     bool overhead = false;     ///< also measure the bare hemicube (shot_overhead_ratio)
     bool accuracy = false;     ///< accuracy at points against `hemirad reference` instead
     bool soak = false;         ///< a long run: resident memory, GL objects, log (run_soak)
+    /// Real sizes: the scene is written to an OBJ file first (not timed), and what is timed
+    /// is loading that file as a user's would be; one 1024 x 768 view is rendered at the end.
+    bool from_obj_file = false;
 };
 
 validation::BenchRoomOptions room402() { return {2, 6, 7, 0.6}; }
@@ -154,6 +158,19 @@ std::vector<Spec> experiments() {
         v.push_back({"scale_patches_1e" + std::to_string(e),
                      "room402 at ~1e" + std::to_string(e) + " leaf patches, 16 shots, res 256",
                      room(room402()), std::pow(10.0, e), 11, 16, 0.01, 0, "hybrid", false, 256});
+    // Real sizes (issue 11): a furnished floor of 1e5 and 1e6 triangles, loaded from an OBJ
+    // file, ~2 leaves per triangle (big walls and the floor subdivide), 16 shots at res 256,
+    // a rendered view.
+    for (int e = 5; e <= 6; ++e) {
+        const long triangles = std::lround(std::pow(10.0, e));
+        Spec s{"scale_triangles_1e" + std::to_string(e),
+               "furnished floor of ~1e" + std::to_string(e) +
+                   " triangles from an OBJ file, 16 shots, res 256, one view",
+               [triangles] { return validation::make_furnished_floor(triangles); },
+               2.0 * double(triangles), 4, 16, 0.01, 0, "hybrid", false, 256};
+        s.from_obj_file = true;
+        v.push_back(s);
+    }
     // ...and vs polygons at ~100,000 leaf patches.
     const struct { int sets, cabinets; } poly[] = {{0, 7}, {2, 7}, {6, 12}, {17, 28}, {40, 40}};
     for (const auto& p : poly) {
@@ -168,6 +185,7 @@ std::vector<Spec> experiments() {
 
 struct Sums {
     double select = 0, push_pull = 0, ff = 0, update = 0, render = 0, readback = 0, reduce = 0;
+    double cull = 0;
     double links = 0;
 };
 
@@ -455,8 +473,20 @@ void run_child(const Spec& spec) {
     if (spec.accuracy) return run_accuracy(spec);
     if (spec.soak) return run_soak(spec);
     auto context = gl::Context::create();
+    std::string obj_path;
+    std::uintmax_t obj_bytes = 0;
+    if (spec.from_obj_file) {
+        obj_path = (std::filesystem::temp_directory_path() /
+                    ("hemirad-bench-" + std::to_string(getpid()) + ".obj")).string();
+        write_obj(spec.scene(), obj_path);
+        obj_bytes = std::filesystem::file_size(obj_path);
+    }
     const auto t_scene = Clock::now();
-    const Scene scene = spec.scene();
+    const Scene scene = spec.from_obj_file ? load_scene(obj_path) : spec.scene();
+    if (spec.from_obj_file) {
+        std::filesystem::remove(obj_path);
+        std::filesystem::remove(std::filesystem::path(obj_path).replace_extension(".mtl"));
+    }
     SolverOptions so;
     so.ff = spec.ff;
     so.flat = spec.flat;
@@ -483,6 +513,7 @@ void run_child(const Spec& spec) {
         sum.links += double(r.links);
         for (const auto& p : r.ff_phases) {
             if (!std::strcmp(p.phase, "render")) sum.render += p.seconds;
+            else if (!std::strcmp(p.phase, "cull")) sum.cull += p.seconds;
             else if (!std::strcmp(p.phase, "readback")) sum.readback += p.seconds;
             else if (!std::strcmp(p.phase, "reduce")) sum.reduce += p.seconds;
         }
@@ -498,11 +529,27 @@ void run_child(const Spec& spec) {
     }
     const long shots = solver.shots();
     const double seconds = solver.seconds();
+    double render_seconds = 0;
+    if (spec.from_obj_file) {
+        const auto t_render = Clock::now();
+        SolutionRenderer renderer(scene);
+        RenderOptions ro;
+        ro.width = 1024, ro.height = 768;
+        const ImageRGB image = renderer.render(solver.hierarchy(), default_camera(scene), ro);
+        render_seconds = since(t_render);
+        HEMIRAD_CHECK(image.width == 1024);
+    }
 
     Json j = Json::object();
     j["name"] = spec.name;
     j["description"] = spec.description;
     j["polygons"] = scene.polygons.size();
+    j["triangles"] = scene.triangle_count();
+    if (spec.from_obj_file) {
+        j["obj_bytes"] = obj_bytes;
+        j["load_seconds"] = scene_seconds;
+        j["render_seconds"] = render_seconds;
+    }
     j["leaf_patches"] = solver.hierarchy().leaf_count();
     j["shots"] = shots;
     j["seconds"] = seconds;
@@ -521,6 +568,7 @@ void run_child(const Spec& spec) {
     b["select"] = sum.select;
     b["push_pull"] = sum.push_pull;
     b["form_factors"] = sum.ff;
+    b["ff_cull"] = sum.cull;
     b["ff_render"] = sum.render;
     b["ff_readback"] = sum.readback;
     b["ff_reduce"] = sum.reduce;
@@ -575,6 +623,14 @@ void run_child(const Spec& spec) {
     std::printf("JSON %s\n", j.dump(0).c_str());
     if (spec.overhead) std::printf("RATIO %.17g\n", ratio);
     const double n = shots ? double(shots) : 1.0;
+    char note[160] = "";
+    if (spec.paper_seconds > 0)
+        std::snprintf(note, sizeof note, "paper %.1f s, goal %.1f s", spec.paper_seconds,
+                      spec.goal_seconds);
+    else if (spec.from_obj_file)
+        std::snprintf(note, sizeof note, "%zu triangles, OBJ %.0f MB loaded in %.2f s, view %.2f s",
+                      scene.triangle_count(), double(obj_bytes) / 1e6, scene_seconds,
+                      render_seconds);
     std::printf("ROW %-22s %6zu %9llu %6ld %8.3f %8.2f %9.2e %6.1f %6.1f %6.1f %6.1f %6.1f %6.1f "
                 "%6.1f %7.0f %s\n",
                 spec.name.c_str(), scene.polygons.size(),
@@ -582,11 +638,7 @@ void run_child(const Spec& spec) {
                 1e3 * seconds / n, solver.error_bound(), 1e3 * sum.select / n,
                 1e3 * sum.push_pull / n, 1e3 * sum.render / n, 1e3 * sum.readback / n,
                 1e3 * sum.reduce / n, 1e3 * sum.update / n, 1e3 * setup_seconds,
-                peak_rss_mib(),
-                spec.paper_seconds > 0 ? ("paper " + std::to_string(spec.paper_seconds).substr(0, 3) +
-                                          " s, goal " + std::to_string(spec.goal_seconds).substr(0, 3) + " s")
-                                             .c_str()
-                                       : "");
+                peak_rss_mib(), note);
     std::fflush(stdout);
 }
 
