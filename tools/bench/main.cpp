@@ -483,6 +483,7 @@ void run_child(const Spec& spec) {
     }
     const auto t_scene = Clock::now();
     const Scene scene = spec.from_obj_file ? load_scene(obj_path) : spec.scene();
+    const double peak_after_load = peak_rss_mib(), rss_after_load = rss_mib();
     if (spec.from_obj_file) {
         std::filesystem::remove(obj_path);
         std::filesystem::remove(std::filesystem::path(obj_path).replace_extension(".mtl"));
@@ -501,6 +502,7 @@ void run_child(const Spec& spec) {
     const auto t_setup = Clock::now();
     Solver solver(scene, so);
     const double setup_seconds = since(t_setup);
+    const double peak_after_setup = peak_rss_mib(), rss_after_setup = rss_mib();
 
     Sums sum;
     std::vector<Shooter> shooters; // for the bare hemicube
@@ -530,6 +532,7 @@ void run_child(const Spec& spec) {
     const long shots = solver.shots();
     const double seconds = solver.seconds();
     double render_seconds = 0;
+    const double peak_after_shots = peak_rss_mib();
     if (spec.from_obj_file) {
         const auto t_render = Clock::now();
         SolutionRenderer renderer(scene);
@@ -549,6 +552,12 @@ void run_child(const Spec& spec) {
         j["obj_bytes"] = obj_bytes;
         j["load_seconds"] = scene_seconds;
         j["render_seconds"] = render_seconds;
+        // Where the memory goes: resident after each phase, and the peak up to its end.
+        j["rss_after_load_mib"] = rss_after_load;
+        j["peak_after_load_mib"] = peak_after_load;
+        j["rss_after_setup_mib"] = rss_after_setup;
+        j["peak_after_setup_mib"] = peak_after_setup;
+        j["peak_after_shots_mib"] = peak_after_shots;
     }
     j["leaf_patches"] = solver.hierarchy().leaf_count();
     j["shots"] = shots;
