@@ -18,6 +18,9 @@ public:
         const std::vector<std::uint8_t>& mine) = 0;
     /// True on every rank when `flag` is true on any rank.
     virtual bool any(bool flag) = 0;
+    /// Of the last all_gather's time, the part spent moving the bytes once every rank had
+    /// arrived (the rest was waiting for the slowest rank) [s].
+    virtual double last_transfer_seconds() const { return 0; }
 };
 
 } // namespace hemirad

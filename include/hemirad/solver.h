@@ -115,6 +115,7 @@ public:
         double bytes = 0;        ///< gathered per rank, all rounds together
         double max_bytes = 0;    ///< the largest round
         double seconds = 0;      ///< in the collectives (including waiting for the others)
+        double transfer_seconds = 0; ///< of which moving the bytes (Collective)
     };
     const ParallelStats& parallel_stats() const { return parallel_; }
     /// A hash (FNV-1a, 64 bits) of the state later shots depend on (save_state(): nodes,

@@ -70,6 +70,7 @@ Json solve_report(Solver& solver) {
         p["dense_bytes_per_round"] = 12.0 * double(h.leaf_count());
         p["exchange_seconds"] = ps.seconds;
         p["exchange_seconds_per_round"] = ps.seconds / rounds;
+        p["transfer_seconds_per_round"] = ps.transfer_seconds / rounds;
         j["parallel"] = p;
     }
     j["seconds"] = solver.seconds();

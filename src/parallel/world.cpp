@@ -94,8 +94,10 @@ std::vector<std::vector<std::uint8_t>> World::all_gather(const std::vector<std::
     int n = int(mine.size());
     const std::size_t n_ranks = static_cast<std::size_t>(size_);
     std::vector<int> sizes(n_ranks), offsets(n_ranks);
+    // The sizes first: this all-gather also waits for the slowest rank; the second moves bytes.
     check(MPI_Allgather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD),
           "MPI_Allgather");
+    const double t0 = MPI_Wtime();
     long long total = 0;
     for (int r = 0; r < size_; ++r) {
         offsets[std::size_t(r)] = int(total);
@@ -107,6 +109,7 @@ std::vector<std::vector<std::uint8_t>> World::all_gather(const std::vector<std::
     check(MPI_Allgatherv(mine.data(), n, MPI_BYTE, all.data(), sizes.data(), offsets.data(),
                          MPI_BYTE, MPI_COMM_WORLD),
           "MPI_Allgatherv");
+    transfer_seconds_ = MPI_Wtime() - t0;
     std::vector<std::vector<std::uint8_t>> out(n_ranks);
     for (int r = 0; r < size_; ++r) {
         const std::uint8_t* p = all.data() + offsets[std::size_t(r)];

@@ -27,6 +27,7 @@ public:
     std::vector<std::vector<std::uint8_t>> all_gather(
         const std::vector<std::uint8_t>& mine) override;
     bool any(bool flag) override;
+    double last_transfer_seconds() const override { return transfer_seconds_; }
     /// Ends every rank at once (MPI_Abort) with this exit status; a world of one just returns.
     void abort(int status);
 
@@ -38,6 +39,7 @@ public:
 private:
     int rank_ = 0, size_ = 1, local_rank_ = 0, local_size_ = 1;
     bool started_ = false; ///< this World called MPI_Init
+    double transfer_seconds_ = 0;
 };
 
 /// The World main() built (a world of one when none was built, e.g. in the unit tests).

@@ -164,6 +164,7 @@ bool Solver::step_round() {
     const auto t_exchanged = Clock::now();
     ++parallel_.rounds;
     parallel_.seconds += since(t0);
+    parallel_.transfer_seconds += collective_->last_transfer_seconds();
     double bytes = 0;
     for (const auto& b : all) bytes += double(b.size());
     parallel_.bytes += bytes;

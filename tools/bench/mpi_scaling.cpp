@@ -83,24 +83,27 @@ void run_mpi_scaling() {
         j["max_group_difference"] = worst;
         j["bound_sum"] = bound;
         j["agrees"] = worst <= bound;
-        double bytes = 0, dense = 12.0 * double(r["leaf_patches"]), comm = 0;
+        double bytes = 0, dense = 12.0 * double(r["leaf_patches"]), comm = 0, transfer = 0;
         long rounds = r["shots"];
         if (r.contains("parallel")) {
             rounds = r["parallel"]["rounds"];
             bytes = r["parallel"]["bytes_per_round"];
             dense = r["parallel"]["dense_bytes_per_round"];
             comm = r["parallel"]["exchange_seconds_per_round"];
+            transfer = r["parallel"]["transfer_seconds_per_round"];
         }
         j["rounds"] = rounds;
         j["bytes_per_round"] = bytes;
         j["dense_bytes_per_round"] = dense;
         j["exchange_seconds_per_round"] = comm;
+        j["transfer_seconds_per_round"] = transfer;
         runs.push_back(j);
         std::printf("ROW mpi_scaling np %d: ranks %d, %ld shots in %ld rounds, %.2f s; exchange "
-                    "%.0f bytes (dense would be %.0f), %.2f ms a round; max group difference "
+                    "%.0f bytes (dense would be %.0f), %.2f ms a round (%.3f ms moving bytes); max "
+                    "group difference "
                     "%.2e vs bounds %.2e: %s\n",
                     ranks, got_ranks, long(r["shots"]), rounds, double(r["seconds"]), bytes, dense,
-                    1e3 * comm, worst, bound, worst <= bound ? "agrees" : "DISAGREES");
+                    1e3 * comm, 1e3 * transfer, worst, bound, worst <= bound ? "agrees" : "DISAGREES");
         std::fflush(stdout);
     }
     fs::remove_all(dir);
