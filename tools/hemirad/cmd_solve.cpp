@@ -83,7 +83,9 @@ int cmd_solve(int argc, char** argv) {
     ExportOptions exports;
     ArgParser args("hemirad solve", "hemirad solve SCENE [options]",
                    "Solves the radiosity of a scene by progressive shooting until the error\n"
-                   "bound falls under the tolerance, then writes what was asked for.");
+                   "bound falls under the tolerance, then writes what was asked for.\n"
+                   "Launched by mpirun -np N, each round shoots N shooters, one per rank;\n"
+                   "rank 0 prints and writes (docs/scaling.md).");
     args.positional(
         "SCENE", &scene_name,
         std::string("OBJ file, SCENE.json (OBJ files, luminaires, cameras) or built-in scene (") +
