@@ -132,6 +132,26 @@ bool World::any(bool flag) {
 #endif
 }
 
+void World::sum_to_all(std::vector<float>& values) {
+    if (size_ == 1) return;
+#if HEMIRAD_HAVE_MPI
+    if (values.size() > std::size_t(1) << 30)
+        throw RuntimeError("MPI sum of " + std::to_string(values.size()) + " floats: too many");
+    const int n = int(values.size());
+    std::vector<float> sum(values.size());
+    check(MPI_Reduce(values.data(), sum.data(), n, MPI_FLOAT, MPI_SUM, 0, MPI_COMM_WORLD),
+          "MPI_Reduce");
+    if (rank_ == 0) values.swap(sum);
+    check(MPI_Bcast(values.data(), n, MPI_FLOAT, 0, MPI_COMM_WORLD), "MPI_Bcast");
+#endif
+}
+
+void World::barrier() {
+#if HEMIRAD_HAVE_MPI
+    if (size_ > 1) check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
+#endif
+}
+
 void World::abort(int status) {
 #if HEMIRAD_HAVE_MPI
     if (started_ && size_ > 1) MPI_Abort(MPI_COMM_WORLD, status);

@@ -28,6 +28,12 @@ public:
         const std::vector<std::uint8_t>& mine) override;
     bool any(bool flag) override;
     double last_transfer_seconds() const override { return transfer_seconds_; }
+    /// Element-wise sum over the ranks, the same bits on every rank: summed on rank 0
+    /// (MPI_Reduce), then broadcast. The dense alternative to all_gather's sparse lists
+    /// (measured by hemirad-bench mpi_scaling, docs/scaling.md).
+    void sum_to_all(std::vector<float>& values);
+    /// Waits for every rank.
+    void barrier();
     /// Ends every rank at once (MPI_Abort) with this exit status; a world of one just returns.
     void abort(int status);
 

@@ -7,7 +7,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <utility>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -17,6 +21,7 @@
 
 #include "hemirad/error.h"
 #include "hemirad/json.h"
+#include "parallel/world.h"
 
 namespace hemirad::bench {
 
@@ -50,9 +55,67 @@ nlohmann::json solve(const std::string& hemirad, int ranks, const fs::path& dir)
     return nlohmann::json::parse(f);
 }
 
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// Under mpirun (HEMIRAD_BENCH_MPI_PROBE=SPARSE:DENSE, bytes a round): the exchange alone, no
+/// solve competing for the cores: the sparse all-gather (each rank SPARSE / ranks bytes) and
+/// the dense sum of DENSE / 4 floats (reduce on rank 0 + broadcast), the median of 200 each.
+/// Rank 0 prints "PROBE ranks sparse_ms dense_ms".
+void run_probe(const char* spec) {
+    double sparse = 0, dense = 0;
+    if (std::sscanf(spec, "%lf:%lf", &sparse, &dense) != 2 || !(sparse > 0) || !(dense > 0))
+        throw InputError("HEMIRAD_BENCH_MPI_PROBE: '" + std::string(spec) + "' is not SPARSE:DENSE");
+    int argc = 0;
+    char** argv = nullptr;
+    parallel::World world(argc, argv);
+    const std::vector<std::uint8_t> mine(std::size_t(sparse / world.size()), 1);
+    std::vector<float> values(std::size_t(dense / 4), 0.5f);
+    // The median of 200 (each after a barrier): this machine's other loads make the mean noisy.
+    const auto median_ms = [&](const std::function<void()>& exchange) {
+        std::vector<double> ms;
+        for (int i = 0; i < 200; ++i) {
+            world.barrier();
+            const auto t0 = std::chrono::steady_clock::now();
+            exchange();
+            ms.push_back(1e3 * seconds_since(t0));
+        }
+        std::nth_element(ms.begin(), ms.begin() + 100, ms.end());
+        return ms[100];
+    };
+    const double sparse_ms = median_ms([&] { world.all_gather(mine); });
+    const double dense_ms = median_ms([&] { world.sum_to_all(values); });
+    if (world.rank() == 0) std::printf("PROBE %d %.6g %.6g\n", world.size(), sparse_ms, dense_ms);
+}
+
+/// Runs the probe on `ranks` ranks; returns {sparse ms, dense ms} a round.
+std::pair<double, double> probe(int ranks, double sparse, double dense) {
+    char buf[4096];
+    const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+    if (n <= 0) throw RuntimeError("mpi_scaling: cannot read /proc/self/exe");
+    buf[n] = 0;
+    std::string cmd = "HEMIRAD_BENCH_MPI_PROBE=" + std::to_string(sparse) + ":" +
+                      std::to_string(dense) + " mpirun --oversubscribe ";
+    if (geteuid() == 0) cmd += "--allow-run-as-root ";
+    cmd += "-np " + std::to_string(ranks) + " '" + std::string(buf) +
+           "' --child --only mpi_scaling";
+    FILE* p = popen(cmd.c_str(), "r");
+    if (!p) throw RuntimeError("mpi_scaling: cannot run " + cmd);
+    char line[512];
+    int got_ranks = 0;
+    double s = -1, d = -1;
+    while (std::fgets(line, sizeof line, p))
+        std::sscanf(line, "PROBE %d %lf %lf", &got_ranks, &s, &d);
+    if (pclose(p) != 0 || s < 0 || got_ranks != ranks)
+        throw RuntimeError("mpi_scaling: the exchange probe failed: " + cmd);
+    return {s, d};
+}
+
 } // namespace
 
 void run_mpi_scaling() {
+    if (const char* spec = std::getenv("HEMIRAD_BENCH_MPI_PROBE")) return run_probe(spec);
     if (std::system("command -v mpirun > /dev/null") != 0)
         throw RuntimeError("mpi_scaling: mpirun not found (Debian: openmpi-bin)");
     const std::string hemirad = hemirad_path();
@@ -97,6 +160,15 @@ void run_mpi_scaling() {
         j["dense_bytes_per_round"] = dense;
         j["exchange_seconds_per_round"] = comm;
         j["transfer_seconds_per_round"] = transfer;
+        if (ranks > 1) {
+            // The exchange alone (no solve running): sparse lists vs the dense sum.
+            const auto [sparse_ms, dense_ms] = probe(ranks, bytes, dense);
+            j["probe_sparse_ms"] = sparse_ms;
+            j["probe_dense_ms"] = dense_ms;
+            std::printf("ROW mpi_scaling np %d exchange alone: sparse all-gather of %.0f bytes "
+                        "%.3f ms, dense sum of %.0f bytes (reduce + broadcast) %.3f ms\n",
+                        ranks, bytes, sparse_ms, dense, dense_ms);
+        }
         runs.push_back(j);
         std::printf("ROW mpi_scaling np %d: ranks %d, %ld shots in %ld rounds, %.2f s; exchange "
                     "%.0f bytes (dense would be %.0f), %.2f ms a round (%.3f ms moving bytes); max "
