@@ -19,6 +19,7 @@ packages=(
   nlohmann-json3-dev                                       # SCENE.json files
   xvfb xauth                                               # the viewer's tests run under Xvfb
   clang libclang-rt-14-dev                                 # tools/fuzz.sh: libFuzzer, sanitizers
+  libopenmpi-dev openmpi-bin                               # mpirun -np N: ranks (docs/scaling.md)
 )
 
 missing=()

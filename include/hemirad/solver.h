@@ -10,8 +10,10 @@
 #include <chrono>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "hemirad/collective.h"
 #include "hemirad/form_factors.h"
 #include "hemirad/hierarchy.h"
 #include "hemirad/provider.h"
@@ -76,6 +78,8 @@ struct ShotRecord {
     dvec3 unshot{0.0};          ///< total unshot power after the shot, RGB [W]
     double unshot_fraction = 0; ///< max over channels of unshot / emitted
     double error_bound = 0;     ///< relative bound on ||B - B*||_1 (see Solver::error_bound)
+    int rank = 0;               ///< the rank that shot it (parallel rounds, set_collective)
+    long round = 0;             ///< 1-based round of a parallel solve (0: not parallel)
 };
 
 /// Checks the options a user can get wrong (InputError naming the option and its value).
@@ -95,7 +99,29 @@ public:
            std::unique_ptr<FormFactorProvider> provider);
 
     /// Shoots once. Returns false (and shoots nothing) once a stop criterion holds.
+    /// With a collective of N > 1 ranks, one step is a round of up to N shots, one per rank
+    /// (every rank calls step(); all hold the bit-identical solution afterwards).
     bool step();
+    /// Shoots in parallel rounds with the ranks of `c` (docs/scaling.md); nullptr or a
+    /// collective of one: shoot alone. Every rank must build its Solver from the same scene
+    /// and options, restore the same state, and call step() as often as the others.
+    void set_collective(Collective* c) { collective_ = c; }
+    int ranks() const { return collective_ ? collective_->size() : 1; }
+    /// The shots of the last step(): one, or a round's (in rank order).
+    const std::vector<ShotRecord>& last_round() const { return round_; }
+    /// What the parallel rounds cost so far (on this rank; zero when shooting alone).
+    struct ParallelStats {
+        long rounds = 0;
+        double bytes = 0;        ///< gathered per rank, all rounds together
+        double max_bytes = 0;    ///< the largest round
+        double seconds = 0;      ///< in the collectives (including waiting for the others)
+        double transfer_seconds = 0; ///< of which moving the bytes (Collective)
+    };
+    const ParallelStats& parallel_stats() const { return parallel_; }
+    /// A hash (FNV-1a, 64 bits) of the state later shots depend on (save_state(): nodes,
+    /// unshot powers, dirty flags, view codes, luminaires, counters but the time): ranks that
+    /// hold the bit-identical solution have equal checksums.
+    std::uint64_t state_checksum() const;
     StopReason stop_reason() const { return stop_; }
     bool converged() const { return stop_ == StopReason::Converged; }
 
@@ -169,6 +195,11 @@ private:
     void deliver(const dvec3& dB, double area_s, ShotRecord& rec);
     void finish_shot(ShotRecord& rec, std::chrono::steady_clock::time_point start);
     void check_stop();
+    /// Shoots from `polygon` (pushed): the greedy shooter, replaced by its children while
+    /// must_split says so. Returns the shooter, its unshot radiosity and area; links_ holds
+    /// its links and learned_ the view codes measured.
+    PatchAddress shoot_patch(std::uint32_t polygon, ShotRecord& rec, dvec3& dB, double& area_s);
+    bool step_round(); ///< step() with a collective of more than one rank (solver_round.cpp)
 
     const Scene* scene_;
     SolverOptions options_;
@@ -181,7 +212,12 @@ private:
     /// Per node, what its hemicube showed, once measured: 0 not yet, 1 enclosed centre (always
     /// shoot the children), 2..255 its parallax fraction, P = 1e-4 * 2^((code - 2) / 16).
     std::vector<std::uint8_t> view_;
+    std::vector<std::pair<std::uint64_t, std::uint8_t>> learned_; ///< view_ codes of this shot
     ShotRecord last_;
+    std::vector<ShotRecord> round_;
+    Collective* collective_ = nullptr;
+    ParallelStats parallel_;
+    double apply_seconds_ = 0; ///< this rank's time applying the last round (parallel)
     long shots_ = 0;
     StopReason stop_ = StopReason::Running;
     dvec3 emitted_{0.0}, absorbed_{0.0}, escaped_{0.0};

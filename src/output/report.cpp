@@ -1,5 +1,6 @@
 #include "hemirad/report.h"
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -56,6 +57,22 @@ Json solve_report(Solver& solver) {
     j["nodes"] = h.node_count();
     j["bytes_per_leaf"] = h.bytes_per_leaf();
     j["shots"] = solver.shots();
+    j["ranks"] = solver.ranks();
+    if (solver.ranks() > 1) {
+        // What the parallel rounds exchanged (docs/scaling.md): the sparse link lists, and what
+        // a dense per-leaf sum of float RGB irradiance would have moved instead.
+        const Solver::ParallelStats& ps = solver.parallel_stats();
+        const double rounds = double(std::max(ps.rounds, 1L));
+        Json p = Json::object();
+        p["rounds"] = ps.rounds;
+        p["bytes_per_round"] = ps.bytes / rounds;
+        p["max_bytes_per_round"] = ps.max_bytes;
+        p["dense_bytes_per_round"] = 12.0 * double(h.leaf_count());
+        p["exchange_seconds"] = ps.seconds;
+        p["exchange_seconds_per_round"] = ps.seconds / rounds;
+        p["transfer_seconds_per_round"] = ps.transfer_seconds / rounds;
+        j["parallel"] = p;
+    }
     j["seconds"] = solver.seconds();
     j["emitted_power"] = solver.emitted_power();
     j["absorbed_power"] = solver.absorbed_power();

@@ -179,6 +179,8 @@ PatchAddress Solver::select_shooter(std::uint32_t polygon) {
 bool Solver::step() {
     check_stop();
     if (stop_ != StopReason::Running) return false;
+    round_.clear();
+    if (collective_ && collective_->size() > 1) return step_round();
     const auto t_start = Clock::now();
     ShotRecord rec;
     rec.shot = shots_ + 1;
@@ -207,11 +209,27 @@ bool Solver::step() {
     t0 = Clock::now();
     if (hierarchy_.needs_push_pull(polygon)) hierarchy_.push_pull(polygon);
     rec.t_push_pull = since(t0);
+    dvec3 dB;
+    double area_s = 0;
+    const PatchAddress sa = shoot_patch(polygon, rec, dB, area_s);
+
+    // 3. Update: dI_j += F(j->S) dB_S (irradiance); row sum sum_j F(j->S) A_j / A_S.
+    deliver(dB, area_s, rec);
+    auto t1 = Clock::now();
+    hierarchy_.clear_unshot(sa);
+    rec.t_update += since(t1);
+    last_polygon_ = polygon;
+    finish_shot(rec, t_start);
+    return true;
+}
+
+PatchAddress Solver::shoot_patch(std::uint32_t polygon, ShotRecord& rec, dvec3& dB,
+                                 double& area_s) {
+    learned_.clear();
     const Polygon& poly = scene_->polygons[polygon];
     PatchAddress sa;
     Shooter shooter;
-    dvec3 dB;
-    double area_s = 0;
+    Clock::time_point t0;
     for (;;) {
         t0 = Clock::now();
         sa = select_shooter(polygon);
@@ -234,10 +252,12 @@ bool Solver::step() {
         rec.parallax = -1;
         if (int(sa.level) < hierarchy_.depth(polygon)) {
             const std::uint64_t id = hierarchy_.node_id(sa);
-            if (view_[id] == kViewUnknown)
+            if (view_[id] == kViewUnknown) {
                 view_[id] = provider_->last_backface_fraction() > options_.enclosed_fraction
                                 ? kViewEnclosed
                                 : parallax_code(provider_->last_parallax_fraction());
+                learned_.emplace_back(id, view_[id]);
+            }
             if (view_[id] != kViewEnclosed) rec.parallax = code_parallax(view_[id]);
             if (must_split(id)) {
                 ++rec.refined;
@@ -250,15 +270,7 @@ bool Solver::step() {
     rec.shooter_power = shooter.unshot_power;
     rec.ff_phases = provider_->last_timings();
     rec.links = links_.size();
-
-    // 3. Update: dI_j += F(j->S) dB_S (irradiance); row sum sum_j F(j->S) A_j / A_S.
-    deliver(dB, area_s, rec);
-    auto t1 = Clock::now();
-    hierarchy_.clear_unshot(sa);
-    rec.t_update += since(t1);
-    last_polygon_ = polygon;
-    finish_shot(rec, t_start);
-    return true;
+    return sa;
 }
 
 // A luminaire shoots all its power once, over the whole sphere (FormFactorProvider::
@@ -313,6 +325,7 @@ void Solver::finish_shot(ShotRecord& rec, Clock::time_point t_start) {
     rec.unshot_fraction = unshot_fraction();
     rec.error_bound = error_bound();
     last_ = std::move(rec);
+    round_.push_back(last_);
 }
 
 bool Solver::must_split(std::uint64_t node) const {

@@ -25,6 +25,7 @@
 #include <glad/gl.h>
 
 #include "hemirad/args.h"
+#include "mpi_scaling.h"
 #include "hemirad/error.h"
 #include "hemirad/gather.h"
 #include "hemirad/gl/context.h"
@@ -151,6 +152,10 @@ std::vector<Spec> experiments() {
     soak.shots = 100000;
     soak.soak = true;
     v.push_back(soak);
+    // Parallel shooting on 1 and 2 MPI ranks (mpi_scaling.cpp, docs/scaling.md).
+    Spec mpi{"mpi_scaling", "Cornell box to 0.1 %: alone, mpirun -np 1 and 2; bytes per round",
+             cornell};
+    v.push_back(mpi);
     // Scaling: seconds per shot vs leaf patches at 402 polygons, at a fixed hemicube
     // resolution (256) so that the pixels shaded stay the same and what grows is the
     // geometry, the reduction and the update...
@@ -472,6 +477,7 @@ void run_soak(const Spec& spec) {
 void run_child(const Spec& spec) {
     if (spec.accuracy) return run_accuracy(spec);
     if (spec.soak) return run_soak(spec);
+    if (spec.name == "mpi_scaling") return bench::run_mpi_scaling();
     auto context = gl::Context::create();
     std::string obj_path;
     std::uintmax_t obj_bytes = 0;

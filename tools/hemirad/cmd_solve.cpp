@@ -18,6 +18,7 @@
 #include "hemirad/memory_guard.h"
 #include "hemirad/readout.h"
 #include "hemirad/solver.h"
+#include "parallel/world.h"
 #include "solve_outputs.h"
 
 namespace hemirad::cli {
@@ -55,7 +56,19 @@ Json shot_json(const ShotRecord& r) {
     j["error_bound"] = r.error_bound;
     j["row_sum"] = r.row_sum;
     if (r.row_guarded) j["row_guarded"] = true;
+    if (r.round > 0) {
+        j["round"] = r.round;
+        j["rank"] = r.rank;
+    }
     return j;
+}
+
+/// The EGL device of this rank: --device when given, else the rank on this machine when the
+/// machine has several devices (one GPU per rank), else the default.
+int rank_device(const ArgParser& args, int device, const parallel::World& world) {
+    if (args.given("--device") || world.local_size() < 2) return device;
+    const std::size_t devices = gl::Context::egl_devices().size();
+    return devices >= 2 ? int(std::size_t(world.local_rank()) % devices) : device;
 }
 
 } // namespace
@@ -70,7 +83,9 @@ int cmd_solve(int argc, char** argv) {
     ExportOptions exports;
     ArgParser args("hemirad solve", "hemirad solve SCENE [options]",
                    "Solves the radiosity of a scene by progressive shooting until the error\n"
-                   "bound falls under the tolerance, then writes what was asked for.");
+                   "bound falls under the tolerance, then writes what was asked for.\n"
+                   "Launched by mpirun -np N, each round shoots N shooters, one per rank;\n"
+                   "rank 0 prints and writes (docs/scaling.md).");
     args.positional(
         "SCENE", &scene_name,
         std::string("OBJ file, SCENE.json (OBJ files, luminaires, cameras) or built-in scene (") +
@@ -86,6 +101,14 @@ int cmd_solve(int argc, char** argv) {
     args.flag("--quiet", &quiet, "print nothing but errors");
     add_scene_options(args, builtin, obj);
     if (!args.parse(argc, argv, 2)) return 0;
+    // Launched by mpirun: every rank solves, rank 0 alone prints and writes (docs/scaling.md).
+    parallel::World& world = parallel::world();
+    const bool lead = world.rank() == 0;
+    if (!lead) quiet = true;
+    if (world.size() == 1 && parallel::World::launched_size() > 1 && !quiet)
+        std::fprintf(stderr, "hemirad: warning: launched as one of %d processes, but built "
+                             "without MPI (HEMIRAD_MPI=OFF): this process solves alone\n",
+                     parallel::World::launched_size());
     if (!probes_in.empty() && probes_out.empty())
         throw InputError("--probes needs --probe-out OUT.csv");
     validate_options(so);
@@ -111,10 +134,10 @@ int cmd_solve(int argc, char** argv) {
     check_memory(scene, discretise(scene, so.hierarchy), so);
     // One GL context for the whole run: the GPU provider and the image outputs share it.
     std::unique_ptr<gl::Context> context;
-    if (is_gpu_provider(so.ff) || out.needs_gl()) {
+    if (is_gpu_provider(so.ff) || (lead && out.needs_gl())) {
         gl::ContextOptions co;
         co.backend = gl::parse_backend(so.provider.gpu.backend);
-        co.device = so.provider.gpu.device;
+        co.device = rank_device(args, so.provider.gpu.device, world);
         context = gl::Context::create(co);
         so.provider.gpu.use_current_context = true;
         if (!quiet)
@@ -122,6 +145,7 @@ int cmd_solve(int argc, char** argv) {
                          context->renderer().c_str(), context->vendor().c_str());
     }
     Solver solver(scene, so);
+    if (world.size() > 1) solver.set_collective(&world);
     if (resumed) {
         resume_solution(solver, *resumed, exports.resume);
         if (!quiet)
@@ -133,6 +157,10 @@ int cmd_solve(int argc, char** argv) {
                      scene.source.c_str(), scene.polygons.size(),
                      (unsigned long long)solver.hierarchy().leaf_count(),
                      solver.provider().name().c_str());
+        if (world.size() > 1)
+            std::fprintf(stderr, "hemirad: %d MPI ranks, %d on this machine: up to %d shots a "
+                                 "round\n",
+                         world.size(), world.local_size(), world.size());
         if (!scene.luminaires.empty()) {
             double total = 0;
             for (const Luminaire& l : scene.luminaires) total += l.lumens();
@@ -145,15 +173,20 @@ int cmd_solve(int argc, char** argv) {
         }
     }
     std::ofstream log_file;
-    if (!log.empty()) {
+    if (!log.empty() && lead) {
         log_file.open(log, std::ios::trunc);
         if (!log_file) throw RuntimeError("cannot write " + log);
     }
     const bool tty = isatty(2) && !quiet;
     auto last_print = std::chrono::steady_clock::now();
-    while (!interrupted() && solver.step()) {
+    // A signal on any rank stops every rank at the same round.
+    const auto signalled = [&] { return world.size() > 1 ? world.any(interrupted()) : interrupted(); };
+    while (!signalled() && solver.step()) {
         const ShotRecord& r = solver.last_shot();
-        if (log_file.is_open()) log_file << shot_json(r).dump(0) << "\n" << std::flush;
+        if (log_file.is_open()) {
+            for (const ShotRecord& s : solver.last_round()) log_file << shot_json(s).dump(0) << "\n";
+            log_file << std::flush;
+        }
         const auto now = std::chrono::steady_clock::now();
         if (tty && now - last_print > std::chrono::milliseconds(250)) {
             std::fprintf(stderr, "\rshot %ld  unshot %.3e  error bound %.3e / %.3g  %.1f s   ",
@@ -167,11 +200,25 @@ int cmd_solve(int argc, char** argv) {
         log_file.close();
         if (!log_file) throw RuntimeError("error writing " + log);
     }
+    const bool was_interrupted = signalled();
+    if (world.size() > 1) {
+        // Every rank must hold the bit-identical solution (docs/scaling.md): compare hashes.
+        const std::uint64_t sum = solver.state_checksum();
+        const auto* p = reinterpret_cast<const std::uint8_t*>(&sum);
+        for (const auto& other : world.all_gather(std::vector<std::uint8_t>(p, p + sizeof sum)))
+            if (other != std::vector<std::uint8_t>(p, p + sizeof sum))
+                throw RuntimeError("the ranks' solutions differ after " +
+                                   std::to_string(solver.shots()) + " shots (a bug)");
+        if (!quiet)
+            std::fprintf(stderr, "hemirad: the %d ranks hold the bit-identical solution\n",
+                         world.size());
+    }
+    // Every rank holds the same solution: rank 0 alone writes it.
+    if (!lead) return was_interrupted ? 130 : 0;
     // The state is saved before solution(), whose push-pull would change later float sums:
     // a resumed run then ends bit-identical to an uninterrupted one.
     write_solution_file(exports, solver, quiet);
     Hierarchy& h = solver.solution();
-    const bool was_interrupted = interrupted();
     if (!quiet)
         std::fprintf(stderr,
                      "hemirad: %s after %ld shots in %.2f s: error bound %.3e (tolerance %.3g), "

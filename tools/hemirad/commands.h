@@ -11,6 +11,7 @@ namespace hemirad::cli {
 int cmd_info(int argc, char** argv);
 int cmd_scene(int argc, char** argv);
 int cmd_solve(int argc, char** argv);
+int cmd_batch(int argc, char** argv);
 int cmd_formfactors(int argc, char** argv);
 int cmd_reference(int argc, char** argv);
 
