@@ -24,7 +24,7 @@
 
 #include <glad/gl.h>
 
-#include "hemirad/args.h"
+#include "cli/args.h"
 #include "hemirad/error.h"
 #include "hemirad/gather.h"
 #include "hemirad/gl/context.h"
