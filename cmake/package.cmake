@@ -14,8 +14,9 @@ set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # libhemirad is in the package itself: dpkg-shlibdeps finds it there, not in another package.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS ${CMAKE_BINARY_DIR})
-# Not libraries, so not found by dpkg-shlibdeps: the software GL driver that EGL/OSMesa load,
-# Python for the module (numpy at run time), glm for the public headers.
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "libegl-mesa0, libgl1-mesa-dri")
+# Not linked, so not found by dpkg-shlibdeps: libEGL.so.1, which glad opens at run time, and
+# Mesa's EGL and software GL drivers behind it; recommended: Python and numpy for the
+# module, glm for the public headers.
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "libegl1, libegl-mesa0, libgl1-mesa-dri")
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3 (>= 3.11), python3 (<< 3.12), python3-numpy, libglm-dev")
 include(CPack)
