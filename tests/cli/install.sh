@@ -58,8 +58,8 @@ fi
 cmake --build ex -j2 >build.log || { cat build.log; exit 1; }
 
 # solve_groups: per-group E_avg as the CLI's report has it.
-ex/solve_groups/solve_groups cornell 0.1 >groups.txt
-"$P/bin/hemirad" solve cornell --tolerance 0.1 --quiet --report r.json
+ex/solve_groups/solve_groups cie53 0.1 >groups.txt
+"$P/bin/hemirad" solve cie53 --tolerance 0.1 --quiet --report r.json
 python3 - <<'PY'
 import json
 report = {g["name"]: g["E_avg"] for g in json.load(open("r.json"))["groups"]}
@@ -72,8 +72,8 @@ assert any(float(x) > 0 for r in rows for x in r[1:])
 PY
 
 # bake_lightmaps: the same files as `hemirad solve --export-lightmaps`.
-ex/bake_lightmaps/bake_lightmaps "$SRC/assets/cornell.obj" lm 0.1 >files.txt
-"$P/bin/hemirad" solve "$SRC/assets/cornell.obj" --tolerance 0.1 --quiet --export-lightmaps lm_cli
+ex/bake_lightmaps/bake_lightmaps "$SRC/assets/cie53.obj" lm 0.1 >files.txt
+"$P/bin/hemirad" solve "$SRC/assets/cie53.obj" --tolerance 0.1 --quiet --export-lightmaps lm_cli
 [ "$(wc -l <files.txt)" -ge 3 ] || { cat files.txt; exit 1; }
 [ "$(ls lm | wc -l)" = "$(ls lm_cli | wc -l)" ]
 for f in lm_cli/*; do cmp "$f" "lm/$(basename "$f")"; done
