@@ -17,8 +17,7 @@ endforeach()
 
 install(TARGETS hemirad_core EXPORT hemiradTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/include/hemirad DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
         FILES_MATCHING PATTERN "*.h")
 install(FILES ${CMAKE_BINARY_DIR}/generated/include/hemirad/version.h
@@ -37,6 +36,7 @@ install(FILES ${CMAKE_BINARY_DIR}/generated/hemiradConfig.cmake
 # pkg-config: relocatable (the prefix found from the .pc file's own folder), so that
 # --prefix P and the Debian package's /usr both work.
 file(RELATIVE_PATH HEMIRAD_PC_TO_PREFIX /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
+string(REGEX REPLACE "/$" "" HEMIRAD_PC_TO_PREFIX "${HEMIRAD_PC_TO_PREFIX}")
 configure_file(${CMAKE_SOURCE_DIR}/cmake/hemirad.pc.in ${CMAKE_BINARY_DIR}/generated/hemirad.pc
                @ONLY)
 install(FILES ${CMAKE_BINARY_DIR}/generated/hemirad.pc
