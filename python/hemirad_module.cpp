@@ -25,7 +25,9 @@ using namespace hemirad;
 
 namespace {
 
-py::tuple rgb(const dvec3& v) { return py::make_tuple(v.x, v.y, v.z); }
+py::tuple rgb(const dvec3& v) {
+    return py::make_tuple(v.x, v.y, v.z);
+}
 
 /// One shot as a dict: the keys of a line of `hemirad solve --log`.
 py::dict shot_dict(const ShotRecord& r) {
@@ -79,7 +81,7 @@ std::vector<dvec3> rows3(const py::handle& obj, const char* what) {
 /// A Solver that also keeps its shot log, and the scene it solves (a copy: the Python
 /// object may go away).
 class PySolver {
-public:
+  public:
     PySolver(const Scene& scene, const SolverOptions& options)
         : scene_(std::make_unique<Scene>(scene)), solver_(*scene_, options) {}
 
@@ -106,9 +108,8 @@ public:
         return to_string(solver_.stop_reason());
     }
 
-    py::array_t<double> irradiance(const py::handle& points, const py::handle& normals,
-                                   bool gather, int gather_rays, double gather_angle,
-                                   std::uint64_t seed) {
+    py::array_t<double> irradiance(const py::handle& points, const py::handle& normals, bool gather,
+                                   int gather_rays, double gather_angle, std::uint64_t seed) {
         const std::vector<dvec3> p = rows3(points, "points");
         const std::vector<dvec3> n = rows3(normals, "normals");
         if (p.size() != n.size())
@@ -169,7 +170,7 @@ public:
     Solver& solver() { return solver_; }
     const Scene& scene() const { return *scene_; }
 
-private:
+  private:
     std::unique_ptr<Scene> scene_;
     Solver solver_;
     std::vector<ShotRecord> log_;
@@ -194,7 +195,8 @@ PYBIND11_MODULE(hemirad, m) {
         .def_readonly("groups", &Scene::groups)
         .def_readonly("warnings", &Scene::warnings)
         .def_property_readonly("polygon_count", [](const Scene& s) { return s.polygons.size(); })
-        .def_property_readonly("emitted_power", [](const Scene& s) { return rgb(s.emitted_power()); })
+        .def_property_readonly("emitted_power",
+                               [](const Scene& s) { return rgb(s.emitted_power()); })
         .def_property_readonly("total_area", &Scene::total_area)
         .def("__repr__", [](const Scene& s) {
             return "<hemirad.Scene " + s.source + ": " + std::to_string(s.polygons.size()) +
@@ -213,8 +215,8 @@ PYBIND11_MODULE(hemirad, m) {
             o.max_reflectance = max_reflectance;
             return load_scene(name, b, o);
         },
-        py::arg("name"), py::arg("subdiv") = 1, py::arg("rho") = -1.0,
-        py::arg("sphere_rings") = 16, py::arg("max_reflectance") = 0.98,
+        py::arg("name"), py::arg("subdiv") = 1, py::arg("rho") = -1.0, py::arg("sphere_rings") = 16,
+        py::arg("max_reflectance") = 0.98,
         "A built-in scene (cornell, cube, ...), an OBJ file or a SCENE.json file, with the "
         "options of `hemirad solve` (--subdiv, --rho, --rings, --max-reflectance).");
     m.def("builtin_names", []() { return std::string(builtin_names()); });
@@ -252,8 +254,7 @@ PYBIND11_MODULE(hemirad, m) {
              "after every shot with the shot's dict and may return False to stop. Returns "
              "the stop reason.")
         .def("irradiance", &PySolver::irradiance, py::arg("points"), py::arg("normals"),
-             py::kw_only(), py::arg("gather") = true,
-             py::arg("gather_rays") = GatherOptions{}.rays,
+             py::kw_only(), py::arg("gather") = true, py::arg("gather_rays") = GatherOptions{}.rays,
              py::arg("gather_angle") = GatherOptions{}.emitter_angle,
              py::arg("seed") = GatherOptions{}.seed,
              "Irradiance [W unit^-2] at points on surfaces facing `normals`, an (N, 3) array, "
@@ -264,19 +265,22 @@ PYBIND11_MODULE(hemirad, m) {
         .def_property_readonly("shot_log", &PySolver::shot_log,
                                "Every shot so far, as dicts (the keys of `--log`).")
         .def("report", &PySolver::report, "The JSON report of `hemirad solve --report`, as a dict.")
-        .def("export_lightmaps",
-             [](PySolver& s, const std::string& dir) {
-                 return export_lightmaps(dir, s.solver().solution());
-             },
-             py::arg("dir"), "Writes lightmaps (EXR + OBJ per group) into dir; returns the files.")
-        .def("export_ply",
-             [](PySolver& s, const std::string& path) { export_ply(path, s.solver().solution()); },
-             py::arg("path"))
+        .def(
+            "export_lightmaps",
+            [](PySolver& s, const std::string& dir) {
+                return export_lightmaps(dir, s.solver().solution());
+            },
+            py::arg("dir"), "Writes lightmaps (EXR + OBJ per group) into dir; returns the files.")
+        .def(
+            "export_ply",
+            [](PySolver& s, const std::string& path) { export_ply(path, s.solver().solution()); },
+            py::arg("path"))
         .def_property_readonly("shots", [](PySolver& s) { return s.solver().shots(); })
         .def_property_readonly("error_bound", [](PySolver& s) { return s.solver().error_bound(); })
         .def_property_readonly("converged", [](PySolver& s) { return s.solver().converged(); })
-        .def_property_readonly("stop_reason",
-                               [](PySolver& s) { return std::string(to_string(s.solver().stop_reason())); })
+        .def_property_readonly(
+            "stop_reason",
+            [](PySolver& s) { return std::string(to_string(s.solver().stop_reason())); })
         .def_property_readonly("seconds", [](PySolver& s) { return s.solver().seconds(); })
         .def_property_readonly("form_factors",
                                [](PySolver& s) { return s.solver().provider().name(); })

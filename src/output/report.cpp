@@ -190,8 +190,10 @@ std::vector<ProbeValue> evaluate_probes(const std::vector<Probe>& probes, const 
     for (std::size_t k = 0; k < probes.size(); ++k) {
         const std::optional<SurfacePoint>& sp = surfaces[k];
         if (sp) values[k].polygon = sp->polygon;
-        if (gather) values[k].E = gathered[k].E();
-        else if (sp) values[k].E = irradiance_at(h, *sp);
+        if (gather)
+            values[k].E = gathered[k].E();
+        else if (sp)
+            values[k].E = irradiance_at(h, *sp);
     }
     return values;
 }
@@ -206,15 +208,17 @@ std::string probes_csv(const std::vector<Probe>& probes, const Hierarchy& h,
     for (std::size_t k = 0; k < probes.size(); ++k) {
         const Probe& p = probes[k];
         const ProbeValue& v = values[k];
-        s << p.position.x << "," << p.position.y << "," << p.position.z << "," << p.normal.x
-          << "," << p.normal.y << "," << p.normal.z << ",";
+        s << p.position.x << "," << p.position.y << "," << p.position.z << "," << p.normal.x << ","
+          << p.normal.y << "," << p.normal.z << ",";
         if (!v.E) {
             s << ",,,,none\n";
             continue;
         }
         s << v.E->x << "," << v.E->y << "," << v.E->z << ",";
-        if (v.polygon) s << *v.polygon << "," << scene.groups[scene.polygons[*v.polygon].group] << "\n";
-        else s << ",none\n";
+        if (v.polygon)
+            s << *v.polygon << "," << scene.groups[scene.polygons[*v.polygon].group] << "\n";
+        else
+            s << ",none\n";
     }
     return s.str();
 }
