@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "hemirad/matrix_solver.h"
+#include "solver/matrix_solver.h"
 #include "hemirad/provider.h"
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"

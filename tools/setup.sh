@@ -17,6 +17,8 @@ packages=(
   libglfw3-dev libglm-dev python3-glad                     # viewer window, maths, GL loader
   libopenexr-dev libpng-dev zlib1g-dev libgtest-dev
   nlohmann-json3-dev                                       # SCENE.json files
+  pybind11-dev python3-dev python3-numpy                   # the Python module (python/)
+  dpkg-dev                                                 # cpack -G DEB: dpkg-shlibdeps
   xvfb xauth                                               # the viewer's tests run under Xvfb
   clang libclang-rt-14-dev                                 # tools/fuzz.sh: libFuzzer, sanitizers
   libopenmpi-dev openmpi-bin                               # mpirun -np N: ranks (docs/scaling.md)

@@ -1,6 +1,7 @@
 // Reports on a solution: the JSON summary, probe points, text outputs written atomically.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,16 @@ std::string probe_points_csv(const std::vector<Probe>& probes);
 /// Reads CSV rows x,y,z,nx,ny,nz (a header line is optional; '#' comments allowed). Throws
 /// InputError naming the file and line of a malformed row.
 std::vector<Probe> read_probes(const std::string& path);
+/// Irradiance at one probe: E [W unit^-2], RGB, and the polygon the point lies on.
+struct ProbeValue {
+    std::optional<dvec3> E;                ///< empty: on no surface, and no gather
+    std::optional<std::uint32_t> polygon;  ///< empty: on no surface (find_surface)
+};
+/// The values of probes_csv(): without a gather E is interpolated between the leaves around
+/// the point (nothing for a point on no surface); with a final gather (gather.h), point k is
+/// gathered at the point itself with random stream k (deterministic for given options).
+std::vector<ProbeValue> evaluate_probes(const std::vector<Probe>& probes, const Hierarchy& h,
+                                        const FinalGather* gather = nullptr);
 /// CSV x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group. Without a gather E is interpolated between
 /// the leaves around the point and a point on no surface gets empty E columns; with a final
 /// gather (gather.h) E is evaluated at the point itself, also in free space (polygon empty).

@@ -191,8 +191,8 @@ std::vector<Probe> read_probes(const std::string& path) {
     return probes;
 }
 
-std::string probes_csv(const std::vector<Probe>& probes, const Hierarchy& h,
-                       const FinalGather* gather) {
+std::vector<ProbeValue> evaluate_probes(const std::vector<Probe>& probes, const Hierarchy& h,
+                                        const FinalGather* gather) {
     const Scene& scene = h.scene();
     std::vector<std::optional<SurfacePoint>> surfaces;
     std::vector<GatherPoint> queries;
@@ -203,22 +203,39 @@ std::string probes_csv(const std::vector<Probe>& probes, const Hierarchy& h,
     }
     std::vector<GatherValue> gathered;
     if (gather) gathered = gather->at(queries);
+    std::vector<ProbeValue> values(probes.size());
+    for (std::size_t k = 0; k < probes.size(); ++k) {
+        const std::optional<SurfacePoint>& sp = surfaces[k];
+        if (sp) values[k].polygon = sp->polygon;
+        if (gather)
+            values[k].E = gathered[k].E();
+        else if (sp)
+            values[k].E = irradiance_at(h, *sp);
+    }
+    return values;
+}
+
+std::string probes_csv(const std::vector<Probe>& probes, const Hierarchy& h,
+                       const FinalGather* gather) {
+    const Scene& scene = h.scene();
+    const std::vector<ProbeValue> values = evaluate_probes(probes, h, gather);
     std::ostringstream s;
     s.precision(9);
     s << "x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group\n";
     for (std::size_t k = 0; k < probes.size(); ++k) {
         const Probe& p = probes[k];
-        const std::optional<SurfacePoint>& sp = surfaces[k];
-        s << p.position.x << "," << p.position.y << "," << p.position.z << "," << p.normal.x
-          << "," << p.normal.y << "," << p.normal.z << ",";
-        if (!sp && !gather) {
+        const ProbeValue& v = values[k];
+        s << p.position.x << "," << p.position.y << "," << p.position.z << "," << p.normal.x << ","
+          << p.normal.y << "," << p.normal.z << ",";
+        if (!v.E) {
             s << ",,,,none\n";
             continue;
         }
-        const dvec3 E = gather ? gathered[k].E() : irradiance_at(h, *sp);
-        s << E.x << "," << E.y << "," << E.z << ",";
-        if (sp) s << sp->polygon << "," << scene.groups[scene.polygons[sp->polygon].group] << "\n";
-        else s << ",none\n";
+        s << v.E->x << "," << v.E->y << "," << v.E->z << ",";
+        if (v.polygon)
+            s << *v.polygon << "," << scene.groups[scene.polygons[*v.polygon].group] << "\n";
+        else
+            s << ",none\n";
     }
     return s.str();
 }

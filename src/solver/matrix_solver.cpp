@@ -1,4 +1,4 @@
-#include "hemirad/matrix_solver.h"
+#include "solver/matrix_solver.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "fuzz_util.h"
-#include "hemirad/cli_options.h"
+#include "cli/cli_options.h"
 #include "hemirad/error.h"
 #include "hemirad/grid.h"
 #include "hemirad/memory_guard.h"

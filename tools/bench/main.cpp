@@ -24,9 +24,9 @@
 
 #include <glad/gl.h>
 
-#include "hemirad/args.h"
-#include "mpi_scaling.h"
+#include "cli/args.h"
 #include "hemirad/error.h"
+#include "mpi_scaling.h"
 #include "hemirad/gather.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/json.h"

@@ -9,7 +9,7 @@
 #include <set>
 
 #include "commands.h"
-#include "hemirad/cli_options.h"
+#include "cli/cli_options.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/json.h"

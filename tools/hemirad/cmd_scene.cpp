@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "commands.h"
-#include "hemirad/cli_options.h"
+#include "cli/cli_options.h"
 #include "hemirad/error.h"
 #include "hemirad/json.h"
 #include "hemirad/report.h"

@@ -10,7 +10,7 @@
 
 #include "commands.h"
 #include "export_outputs.h"
-#include "hemirad/cli_options.h"
+#include "cli/cli_options.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/grid.h"

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "hemirad/args.h"
+#include "cli/args.h"
 #include "hemirad/scene_io.h"
 
 namespace hemirad::cli {

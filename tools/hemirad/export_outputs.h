@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "hemirad/args.h"
+#include "cli/args.h"
 #include "hemirad/gather.h"
 #include "hemirad/grid.h"
 #include "hemirad/solution_file.h"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "hemirad/args.h"
+#include "cli/args.h"
 #include "hemirad/solver.h"
 
 namespace hemirad::cli {

@@ -9,12 +9,14 @@
 
 #include "commands.h"
 #include "hemirad/error.h"
+#include "hemirad/version.h"
 #include "parallel/world.h"
 
 namespace {
 
 const char* kUsage =
     "usage: hemirad COMMAND [options]\n"
+    "       hemirad --version\n"
     "\n"
     "hemirad solves diffuse global illumination by progressive radiosity shooting, with form\n"
     "factors from a GPU hemicube (OpenGL 4.5, headless: EGL or OSMesa).\n"
@@ -43,6 +45,10 @@ int main(int argc, char** argv) {
         !std::strcmp(argv[1], "help")) {
         std::fputs(kUsage, argc < 2 ? stderr : stdout);
         return argc < 2 ? 2 : 0;
+    }
+    if (!std::strcmp(argv[1], "--version")) {
+        std::printf("hemirad %s\n", HEMIRAD_VERSION);
+        return 0;
     }
     const std::string command = argv[1];
     // MPI starts here when mpirun launched this process (a world of one otherwise).

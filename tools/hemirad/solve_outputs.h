@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "hemirad/args.h"
+#include "cli/args.h"
 #include "hemirad/report.h"
 #include "hemirad/solver.h"
 #include "image_outputs.h"

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "../../src/output/draw.h"
-#include "hemirad/cli_options.h"
+#include "cli/cli_options.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/image.h"

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "../../src/output/draw.h"
-#include "hemirad/cli_options.h"
+#include "cli/cli_options.h"
 #include "hemirad/error.h"
 #include "hemirad/image.h"
 #include "hemirad/render.h"

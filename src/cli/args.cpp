@@ -1,4 +1,4 @@
-#include "hemirad/args.h"
+#include "cli/args.h"
 
 #include <algorithm>
 #include <cerrno>

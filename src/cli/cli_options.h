@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "hemirad/args.h"
+#include "cli/args.h"
 #include "hemirad/scene.h"
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"

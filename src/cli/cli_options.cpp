@@ -1,4 +1,4 @@
-#include "hemirad/cli_options.h"
+#include "cli/cli_options.h"
 
 #include <cstdio>
 

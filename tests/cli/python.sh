@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# The Python module (python/), with Debian's python3 and numpy: it solves the Cornell box and
+# its irradiance at points equals `hemirad solve --probes` for the same points and options
+# (the final gather is seeded per point: deterministic; the CSV keeps 9 digits, hence 1e-7);
+# group statistics, the shot log and the progress callback agree with each other and with the
+# report; bad input raises a Python exception carrying hemirad's message.
+set -euo pipefail
+HEMIRAD="$1"
+export PYTHONPATH="$(dirname "$HEMIRAD")/python"
+PYTHON=/usr/bin/python3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+
+"$HEMIRAD" scene cornell --surface-points 60 --points-out p.csv
+"$HEMIRAD" solve cornell --tolerance 0.02 --quiet --probes p.csv --probe-out cli.csv \
+    --report cli.json --gather-rays 256
+"$PYTHON" - <<'PY'
+import json, math
+import numpy as np
+import hemirad
+
+rows = np.loadtxt("p.csv", delimiter=",", skiprows=1, ndmin=2)
+scene = hemirad.load_scene("cornell")
+assert scene.polygon_count > 0 and "floor" in scene.groups, scene
+
+s = hemirad.Solver(scene, tolerance=0.02)
+seen = []
+reason = s.solve(progress=lambda shot: seen.append(shot["shot"]))
+assert reason == "converged" and s.converged, reason
+assert seen == list(range(1, s.shots + 1)), (seen[:5], s.shots)
+log = s.shot_log
+assert len(log) == s.shots and log[-1]["error_bound"] <= 0.02, log[-1]
+assert {"shot", "shooter_power", "links", "time", "unshot", "error_bound"} <= set(log[0])
+
+E = s.irradiance(rows[:, 0:3], rows[:, 3:6], gather_rays=256)
+assert E.shape == (len(rows), 3) and E.dtype == np.float64
+cli = np.loadtxt("cli.csv", delimiter=",", skiprows=1, usecols=(6, 7, 8), ndmin=2)
+assert np.all(np.isfinite(E)) and E.max() > 0
+err = np.abs(E - cli).max() / np.abs(cli).max()
+assert err < 1e-7, f"Python vs CLI probes: max relative difference {err:.3g}"
+# Again: the same numbers (seeded per point, whatever the threads).
+assert np.array_equal(E, s.irradiance(rows[:, 0:3], rows[:, 3:6], gather_rays=256))
+
+report = json.load(open("cli.json"))
+groups = s.group_statistics()
+assert set(groups) == {g["name"] for g in report["groups"]}, groups.keys()
+for g in report["groups"]:
+    py = groups[g["name"]]
+    for key in ("E_avg", "E_min", "E_max"):
+        for a, b in zip(py[key], g[key]):
+            assert math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12), (g["name"], key, a, b)
+assert s.report()["shots"] == report["shots"] == s.shots
+
+# The callback may stop the solve.
+s2 = hemirad.Solver(scene, tolerance=0.02)
+assert s2.solve(progress=lambda shot: shot["shot"] < 3) == "stopped" and s2.shots == 3
+
+def raises(kind, words, f):
+    try:
+        f()
+    except kind as e:
+        assert all(w in str(e) for w in words), (str(e), words)
+        return
+    raise AssertionError(f"no {kind.__name__} for {words}")
+
+raises(ValueError, ["no-such-scene"], lambda: hemirad.load_scene("no-such-scene"))
+raises(hemirad.InputError, ["missing.obj"], lambda: hemirad.load_scene("missing.obj"))
+raises(ValueError, ["--tolerance"], lambda: hemirad.Solver(scene, tolerance=-1))
+raises(ValueError, ["(N, 3)"], lambda: s.irradiance(np.zeros((4, 2)), np.zeros((4, 2))))
+raises(ValueError, ["differ"], lambda: s.irradiance(np.zeros((4, 3)), np.zeros((5, 3))))
+raises(ValueError, ["not finite"],
+       lambda: s.irradiance(np.full((1, 3), np.nan), np.array([[0.0, 1.0, 0.0]])))
+raises(ValueError, ["--gather-rays"],
+       lambda: s.irradiance(rows[:1, 0:3], rows[:1, 3:6], gather_rays=1))
+print("python: ok,", s.shots, "shots, max relative difference to the CLI", err)
+PY
