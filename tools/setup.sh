@@ -17,6 +17,7 @@ packages=(
   libglfw3-dev libglm-dev python3-glad                     # viewer window, maths, GL loader
   libopenexr-dev libpng-dev zlib1g-dev libgtest-dev
   nlohmann-json3-dev                                       # SCENE.json files
+  libstb-dev libtinygltf-dev                               # textures (PNG, JPEG), glTF 2.0
   xvfb xauth                                               # the viewer's tests run under Xvfb
   clang libclang-rt-14-dev                                 # tools/fuzz.sh: libFuzzer, sanitizers
 )
