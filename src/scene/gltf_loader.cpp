@@ -32,6 +32,13 @@ namespace fs = std::filesystem;
 
 /// Most node levels followed (glTF's tree is acyclic; a file that is not is refused before).
 constexpr int kMaxNodeDepth = 1024;
+/// Most node instances visited: a node may be the child of several (not allowed by glTF, but
+/// TinyGLTF does not check), which could multiply the tree exponentially.
+constexpr long kMaxNodeVisits = 1000000;
+/// Most triangles read (instancing can multiply a small file's triangles).
+constexpr std::size_t kMaxTriangles = std::size_t(1) << 26;
+/// Most elements of an accessor without a buffer view (all zeros: nothing bounds it).
+constexpr std::size_t kMaxZeroElements = std::size_t(1) << 24;
 
 /// Images decoded by TinyGLTF's image callback, by image index; failures as warnings.
 struct ImageSink {
@@ -77,8 +84,13 @@ public:
         const std::size_t count = a.count;
         if (count > (std::size_t(1) << 31)) throw error(name + ": count " + std::to_string(count) +
                                                         " is too large");
-        std::vector<double> out(count * std::size_t(components), 0.0);
-        if (a.bufferView < 0) return out; // no view: all zeros (glTF 3.6.2.3)
+        if (a.bufferView < 0) { // no view: all zeros (glTF 3.6.2.3)
+            if (count > kMaxZeroElements)
+                throw error(name + ": " + std::to_string(count) +
+                            " elements without a buffer view (at most " +
+                            std::to_string(kMaxZeroElements) + ")");
+            return std::vector<double>(count * std::size_t(components), 0.0);
+        }
         if (std::size_t(a.bufferView) >= m_.bufferViews.size())
             throw error(name + " refers to buffer view " + std::to_string(a.bufferView) +
                         ", which does not exist");
@@ -103,6 +115,7 @@ public:
             throw error(name + " (" + std::to_string(count) + " elements from byte " +
                         std::to_string(a.byteOffset) + ") reaches outside " + vname + " (" +
                         std::to_string(v.byteLength) + " bytes)");
+        std::vector<double> out(count * std::size_t(components), 0.0);
         const unsigned char* base = data.data() + v.byteOffset + a.byteOffset;
         for (std::size_t i = 0; i < count; ++i)
             for (int c = 0; c < components; ++c) {
@@ -223,6 +236,9 @@ private:
         if (int(stack.size()) >= kMaxNodeDepth)
             throw error("node " + std::to_string(index) + ": the node tree is deeper than " +
                         std::to_string(kMaxNodeDepth) + " levels");
+        if (++visits_ > kMaxNodeVisits)
+            throw error("the node tree has more than " + std::to_string(kMaxNodeVisits) +
+                        " node instances (nodes that are children of several parents)");
         const tinygltf::Node& node = m_.nodes[std::size_t(index)];
         const glm::dmat4 world = parent * local(index, node);
         if (node.mesh >= 0) add_mesh(scene, index, node, world);
@@ -440,6 +456,10 @@ private:
             std::vector<dvec3> corners(3);
             std::vector<glm::dvec2> uv(3);
             long degenerate = 0;
+            if (idx.size() / 3 > kMaxTriangles - std::min(kMaxTriangles, triangles_))
+                throw error(pname + ": more than " + std::to_string(kMaxTriangles) +
+                            " triangles in the scene");
+            triangles_ += idx.size() / 3;
             for (std::size_t t = 0; t + 2 < idx.size(); t += 3) {
                 for (int k = 0; k < 3; ++k) {
                     const double i = idx[t + std::size_t(mirrored ? 2 - k : k)];
@@ -497,6 +517,8 @@ private:
     std::map<std::uint32_t, std::uint32_t> variants_;
     std::map<std::string, std::uint32_t> groups_;
     std::set<std::string> warned_;
+    long visits_ = 0;
+    std::size_t triangles_ = 0;
     std::vector<std::string> warnings_;
 };
 
