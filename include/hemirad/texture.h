@@ -47,12 +47,11 @@ double srgb_to_linear(double encoded);
 Texture make_texture(const std::string& name, int width, int height,
                      std::vector<glm::vec3> linear);
 
-/// Most texels of an image read (8192 x 8192): larger is refused, as it would need gigabytes.
-inline constexpr long long kMaxTexels = 8192LL * 8192LL;
-
 /// Decodes a PNG or JPEG (anything stb_image reads: also BMP, TGA, GIF, PSD, HDR, PNM) held in
 /// memory, sRGB to linear (HDR images are linear already). Throws InputError naming `name` and
-/// stb_image's reason when it cannot be decoded or is too large.
+/// stb_image's reason when it cannot be decoded, or when it has more than 4096 x 4096 texels
+/// (12 bytes a texel, a third more for the mipmap, in memory and again on the GPU: about 270 MB
+/// each at that size).
 Texture decode_texture(const std::string& name, const unsigned char* bytes, std::size_t size);
 /// Reads and decodes a file (as decode_texture). Throws InputError naming the file.
 Texture load_texture(const std::string& path);

@@ -13,6 +13,11 @@
 
 namespace hemirad {
 
+namespace {
+/// Most texels of an image read (texture.h, decode_texture).
+constexpr long long kMaxTexels = 4096LL * 4096LL;
+} // namespace
+
 double srgb_to_linear(double c) {
     return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
