@@ -13,6 +13,7 @@
 #include <stb_image_write.h>
 
 #include "hemirad/error.h"
+#include "hemirad/export.h"
 #include "hemirad/hierarchy.h"
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"
@@ -274,4 +275,27 @@ TEST(LeafReflectance, HalfGreyTextureSolvesLikeRhoOneHalf) {
             for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(bb[c] / ba[c] - 1));
         }
     EXPECT_LT(worst, 1e-5);
+}
+
+TEST(TexturedLightmap, QuadChartsHoldTexelTimesIrradiance) {
+    // A depth-1 plate over a 16 x 16 checker of 4-texel squares, irradiance 1 everywhere: the
+    // chart gets 8 texels per leaf side (one per texture texel, the most), each rho times its
+    // texel, so both colours show (a leaf's mean alone would be their average).
+    const glm::vec3 a(0.8f), b(0.2f);
+    const Scene s = plate(false, checker(16, 4, a, b), dvec3(0.5));
+    Discretisation d;
+    d.depth = {1};
+    Hierarchy h(s, d);
+    h.receive({0, 0, 0}, dvec3(1.0));
+    h.push_pull(0);
+    const Lightmap lm = build_lightmap(h, 0, "plate");
+    ASSERT_EQ(lm.charts.size(), 1u);
+    const LightmapChart& c = lm.charts[0];
+    ASSERT_EQ(c.n, 16);
+    for (int j = 0; j < c.n; ++j)
+        for (int i = 0; i < c.n; ++i) {
+            // Chart texel (i, j) is parameter ((i + 0.5)/16, (j + 0.5)/16): texture texel (i, j).
+            const float expect = 0.5f * (((i / 4 + j / 4) % 2) ? b.x : a.x);
+            EXPECT_NEAR(lm.atlas.at(c.x0 + i, c.y0 + j)[0], expect, 1e-6) << i << ", " << j;
+        }
 }

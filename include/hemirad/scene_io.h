@@ -29,7 +29,7 @@ Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin 
 
 /// A SCENE.json project file assembles a scene (paths relative to the JSON file's folder):
 ///
-///   {"include": ["room.obj"],                          geometry: OBJ files, at least one
+///   {"include": ["room.obj"],                 geometry: OBJ or glTF files, at least one
 ///    "luminaires": [                                    point sources (photometry.h)
 ///      {"ies": "downlight.ies", "position": [2, 2.8, 2], "aim": [0, -1, 0],
 ///       "rotation": 0, "multiplier": 1, "name": "D1"},
