@@ -14,7 +14,9 @@ using namespace hemirad;
 
 namespace {
 
-std::string data(const std::string& name) { return std::string(HEMIRAD_TEST_DATA) + "/gltf/" + name; }
+std::string data(const std::string& name) {
+    return std::string(HEMIRAD_TEST_DATA) + "/gltf/" + name;
+}
 
 void expect_near(const dvec3& a, const dvec3& b, const char* what) {
     EXPECT_LT(glm::length(a - b), 1e-6) << what << ": (" << a.x << ", " << a.y << ", " << a.z
@@ -117,7 +119,8 @@ TEST(Gltf, BadFilesAreErrorsNamingFileAndElement) {
     for (const Case& c : cases) {
         const std::string e = error_of(c.file);
         for (const std::string& part : c.parts)
-            EXPECT_NE(e.find(part), std::string::npos) << c.file << ": '" << part << "' not in: " << e;
+            EXPECT_NE(e.find(part), std::string::npos)
+                << c.file << ": '" << part << "' not in: " << e;
     }
 }
 

@@ -22,7 +22,7 @@ using namespace hemirad;
 namespace {
 
 class TextureGLTest : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() {
         try {
             context_ = gl::Context::create();

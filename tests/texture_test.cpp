@@ -40,8 +40,8 @@ std::vector<unsigned char> encode(const std::vector<unsigned char>& rgb, int w, 
 }
 
 fs::path scratch(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("hemirad-texture-test-" +
-                                                      std::to_string(::getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("hemirad-texture-test-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     return dir / name;
 }
@@ -51,7 +51,9 @@ void write_bytes(const fs::path& p, const std::vector<unsigned char>& bytes) {
     out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
-void write_text(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+void write_text(const fs::path& p, const std::string& text) {
+    std::ofstream(p) << text;
+}
 
 } // namespace
 
@@ -150,8 +152,8 @@ TEST(TextureObj, MapKdIsReadAndKdMultipliesIt) {
     EXPECT_NEAR(b.rho.x, 0.98, 1e-6);
     bool warned = false;
     for (const std::string& w : s.warnings)
-        warned |= w.find("without texture coordinates: Kd times the texture's mean") !=
-                  std::string::npos;
+        warned |=
+            w.find("without texture coordinates: Kd times the texture's mean") != std::string::npos;
     EXPECT_TRUE(warned);
 }
 
@@ -236,8 +238,7 @@ TEST(LeafReflectance, FineTextureIsBoxFilteredThroughItsMipmap) {
     // 8 x 8 from the level of 16-texel texels, each the mean (a + b)/2.
     const glm::vec3 a(1.f), b(0.f);
     const Scene s = plate(false, checker(256, 1, a, b), dvec3(0.5));
-    for (std::uint32_t i = 0; i < 4; ++i)
-        EXPECT_NEAR(patch_reflectance(s, 0, 1, i).x, 0.25, 1e-6);
+    for (std::uint32_t i = 0; i < 4; ++i) EXPECT_NEAR(patch_reflectance(s, 0, 1, i).x, 0.25, 1e-6);
 }
 
 TEST(LeafReflectance, HalfGreyTextureSolvesLikeRhoOneHalf) {
@@ -254,9 +255,9 @@ TEST(LeafReflectance, HalfGreyTextureSolvesLikeRhoOneHalf) {
         m.rho = dvec3(1.0);
         m.texture = 0;
     }
-    textured.texcoords.assign(textured.polygons.size(),
-                              TexCoords{glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1),
-                                        glm::vec2(0, 1)});
+    textured.texcoords.assign(
+        textured.polygons.size(),
+        TexCoords{glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)});
     EXPECT_NEAR(textured.max_reflectance(), 0.5, 1e-12);
     SolverOptions o;
     o.ff = "reference";

@@ -44,8 +44,7 @@ double srgb_to_linear(double encoded);
 
 /// A texture from linear texels (row 0 the top), with its mipmap. width, height >= 1 and
 /// texels.size() == width * height (checked).
-Texture make_texture(const std::string& name, int width, int height,
-                     std::vector<glm::vec3> linear);
+Texture make_texture(const std::string& name, int width, int height, std::vector<glm::vec3> linear);
 
 /// Decodes a PNG or JPEG (anything stb_image reads: also BMP, TGA, GIF, PSD, HDR, PNM) held in
 /// memory, sRGB to linear (HDR images are linear already). Throws InputError naming `name` and

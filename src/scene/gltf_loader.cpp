@@ -62,7 +62,7 @@ bool decode_image(tinygltf::Image* image, const int index, std::string*, std::st
 }
 
 class GltfReader {
-public:
+  public:
     GltfReader(const std::string& path, const tinygltf::Model& model, const ObjOptions& options)
         : path_(path), m_(model), options_(options) {}
 
@@ -78,12 +78,12 @@ public:
         const int size = tinygltf::GetComponentSizeInBytes(std::uint32_t(a.componentType));
         if (have != components || size <= 0)
             throw error(name + " (" + what + "): type " + std::to_string(a.type) +
-                        " with component type " + std::to_string(a.componentType) +
-                        " is not " + std::to_string(components) + " numbers per element");
+                        " with component type " + std::to_string(a.componentType) + " is not " +
+                        std::to_string(components) + " numbers per element");
         if (a.sparse.isSparse) throw error(name + ": sparse accessors are not supported");
         const std::size_t count = a.count;
-        if (count > (std::size_t(1) << 31)) throw error(name + ": count " + std::to_string(count) +
-                                                        " is too large");
+        if (count > (std::size_t(1) << 31))
+            throw error(name + ": count " + std::to_string(count) + " is too large");
         if (a.bufferView < 0) { // no view: all zeros (glTF 3.6.2.3)
             if (count > kMaxZeroElements)
                 throw error(name + ": " + std::to_string(count) +
@@ -103,8 +103,7 @@ public:
         if (v.byteOffset > data.size() || v.byteLength > data.size() - v.byteOffset)
             throw error(vname + " (bytes " + std::to_string(v.byteOffset) + " + " +
                         std::to_string(v.byteLength) + ") reaches outside buffer " +
-                        std::to_string(v.buffer) + " (" + std::to_string(data.size()) +
-                        " bytes)");
+                        std::to_string(v.buffer) + " (" + std::to_string(data.size()) + " bytes)");
         const std::size_t element = std::size_t(size) * std::size_t(components);
         const std::size_t stride = v.byteStride ? v.byteStride : element;
         if (stride < element)
@@ -139,7 +138,7 @@ public:
 
     ImageSink images;
 
-private:
+  private:
     InputError error(const std::string& message) const { return InputError(path_, 0, message); }
     void warn_once(const std::string& kind, const std::string& text) {
         if (warned_.insert(kind).second) warnings_.push_back(path_ + ": " + text);
@@ -152,8 +151,10 @@ private:
             return v;
         };
         switch (type) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: return double(get(float()));
-        case TINYGLTF_COMPONENT_TYPE_DOUBLE: return get(double());
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return double(get(float()));
+        case TINYGLTF_COMPONENT_TYPE_DOUBLE:
+            return get(double());
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
             const double x = get(std::uint8_t());
             return normalized ? x / 255.0 : x;
@@ -170,8 +171,10 @@ private:
             const double x = get(std::int16_t());
             return normalized ? std::max(x / 32767.0, -1.0) : x;
         }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return double(get(std::uint32_t()));
-        case TINYGLTF_COMPONENT_TYPE_INT: return double(get(std::int32_t()));
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            return double(get(std::uint32_t()));
+        case TINYGLTF_COMPONENT_TYPE_INT:
+            return double(get(std::int32_t()));
         }
         throw InputError(name + ": unknown component type " + std::to_string(type));
     }
@@ -243,8 +246,9 @@ private:
         const glm::dmat4 world = parent * local(index, node);
         if (node.mesh >= 0) add_mesh(scene, index, node, world);
         if (node.camera >= 0) add_camera(scene, index, node, world);
-        if (node.skin >= 0) warn_once("skin", "node " + std::to_string(index) +
-                                                  ": skins are ignored (the bind pose is used)");
+        if (node.skin >= 0)
+            warn_once("skin", "node " + std::to_string(index) +
+                                  ": skins are ignored (the bind pose is used)");
         stack.push_back(index);
         for (int c : node.children) visit(scene, c, world, stack);
         stack.pop_back();
@@ -257,13 +261,13 @@ private:
                         ", which does not exist");
         const tinygltf::Camera& c = m_.cameras[std::size_t(node.camera)];
         if (c.type != "perspective") {
-            warn_once("camera " + c.type, name + ": " + c.type +
-                                              " cameras are not supported: skipped");
+            warn_once("camera " + c.type,
+                      name + ": " + c.type + " cameras are not supported: skipped");
             return;
         }
         const double yfov = c.perspective.yfov;
-        if (!(yfov > 0 && yfov < std::numbers::pi)) throw error(name + ": yfov " + num(yfov) +
-                                                    " must be in (0, pi) radians");
+        if (!(yfov > 0 && yfov < std::numbers::pi))
+            throw error(name + ": yfov " + num(yfov) + " must be in (0, pi) radians");
         // A glTF camera looks down its local -z, with +y up.
         const dvec3 eye(world * glm::dvec4(0, 0, 0, 1));
         const dvec3 forward(world * glm::dvec4(0, 0, -1, 0));
@@ -329,8 +333,7 @@ private:
                 if (g.pbrMetallicRoughness.baseColorTexture.texCoord != 0 && mat.texture >= 0) {
                     warn_once("texcoord " + name,
                               name + " ('" + mat.name + "'): baseColorTexture uses TEXCOORD_" +
-                                  std::to_string(
-                                      g.pbrMetallicRoughness.baseColorTexture.texCoord) +
+                                  std::to_string(g.pbrMetallicRoughness.baseColorTexture.texCoord) +
                                   ": only TEXCOORD_0 is read, so it uses baseColorFactor times "
                                   "the texture's mean");
                     rho *= scene.textures[std::size_t(mat.texture)].mean();
@@ -343,20 +346,21 @@ private:
             // A factor of 1 is glTF's default (white, or the texture as it is): clamped quietly
             // when a texture multiplies it, with a warning otherwise.
             if (clamped && mat.texture < 0)
-                warn_once("clamp " + name,
-                          name + " ('" + mat.name + "'): baseColorFactor of 1 or more (a "
-                                 "surface can't reflect all the light it receives): "
-                                 "reflectance " + num(options_.max_reflectance) +
-                                 " used there (--max-reflectance)");
+                warn_once("clamp " + name, name + " ('" + mat.name +
+                                               "'): baseColorFactor of 1 or more (a "
+                                               "surface can't reflect all the light it receives): "
+                                               "reflectance " +
+                                               num(options_.max_reflectance) +
+                                               " used there (--max-reflectance)");
             if (g.emissiveTexture.index >= 0)
-                warn_once("emissive texture " + name,
-                          name + " ('" + mat.name + "'): emissiveTexture is not read "
-                                 "(emissiveFactor alone)");
-            if (g.alphaMode == "BLEND" ||
-                (g.pbrMetallicRoughness.baseColorFactor.size() == 4 &&
-                 g.pbrMetallicRoughness.baseColorFactor[3] < 1))
-                warn_once("alpha", name + " ('" + mat.name + "'): transparency is not "
-                                          "modelled: every surface is opaque");
+                warn_once("emissive texture " + name, name + " ('" + mat.name +
+                                                          "'): emissiveTexture is not read "
+                                                          "(emissiveFactor alone)");
+            if (g.alphaMode == "BLEND" || (g.pbrMetallicRoughness.baseColorFactor.size() == 4 &&
+                                           g.pbrMetallicRoughness.baseColorFactor[3] < 1))
+                warn_once("alpha", name + " ('" + mat.name +
+                                       "'): transparency is not "
+                                       "modelled: every surface is opaque");
             mat.rho = rho;
         }
         const std::uint32_t id = std::uint32_t(scene.materials.size());
@@ -368,8 +372,8 @@ private:
     /// Our texture for glTF texture `index`, or -1 (its image could not be read: warned).
     int texture(Scene& scene, int index, const std::string& material) {
         if (std::size_t(index) >= m_.textures.size())
-            throw error(material + ": baseColorTexture refers to texture " +
-                        std::to_string(index) + ", which does not exist");
+            throw error(material + ": baseColorTexture refers to texture " + std::to_string(index) +
+                        ", which does not exist");
         const int source = m_.textures[std::size_t(index)].source;
         const auto known = texture_of_image_.find(source);
         if (known != texture_of_image_.end()) return known->second;
@@ -392,8 +396,7 @@ private:
         const std::string mname = "mesh " + std::to_string(node.mesh);
         if (std::size_t(node.mesh) >= m_.meshes.size())
             throw error("node " + std::to_string(node_index) + " refers to " + mname +
-                        ", which does not exist (" + std::to_string(m_.meshes.size()) +
-                        " meshes)");
+                        ", which does not exist (" + std::to_string(m_.meshes.size()) + " meshes)");
         const tinygltf::Mesh& mesh = m_.meshes[std::size_t(node.mesh)];
         // A mirroring transform turns counter-clockwise into clockwise (glTF 3.7.4).
         const bool mirrored = glm::determinant(glm::dmat3(world)) < 0;
@@ -466,20 +469,20 @@ private:
                     if (!(i >= 0 && i < double(nv)) || i != std::floor(i))
                         throw error(pname + ": index " + num(i) + " (accessor " +
                                     std::to_string(prim.indices) + ", element " +
-                                    std::to_string(t + std::size_t(k)) +
-                                    ") is outside its " + std::to_string(nv) + " vertices");
+                                    std::to_string(t + std::size_t(k)) + ") is outside its " +
+                                    std::to_string(nv) + " vertices");
                     const std::size_t v = std::size_t(i);
                     const dvec3 q(world * glm::dvec4(p[3 * v], p[3 * v + 1], p[3 * v + 2], 1.0));
                     for (int c = 0; c < 3; ++c)
                         if (!std::isfinite(q[c]))
                             throw error(pname + ": vertex " + std::to_string(v) +
-                                        " is not finite (accessor " +
-                                        std::to_string(pos->second) + ")");
+                                        " is not finite (accessor " + std::to_string(pos->second) +
+                                        ")");
                     corners[std::size_t(k)] = q;
                     if (!st.empty()) uv[std::size_t(k)] = glm::dvec2(st[2 * v], st[2 * v + 1]);
                 }
-                const AddResult r = add_polygon(scene, corners, mat, g, 1e-6,
-                                                textured ? &uv : nullptr);
+                const AddResult r =
+                    add_polygon(scene, corners, mat, g, 1e-6, textured ? &uv : nullptr);
                 degenerate += r.degenerate;
             }
             if (degenerate)
@@ -566,8 +569,8 @@ Scene load_gltf(const std::string& path, const ObjOptions& options) {
         return s;
     };
     if (!ok || !err.empty())
-        throw InputError(path, 0,
-                         "cannot read the glTF file: " + (err.empty() ? "unknown error" : trim(err)));
+        throw InputError(
+            path, 0, "cannot read the glTF file: " + (err.empty() ? "unknown error" : trim(err)));
     Scene scene = reader.read();
     for (const std::string& w : reader.images.warnings) scene.warnings.push_back(w);
     if (!warn.empty()) scene.warnings.push_back(path + ": " + trim(warn));

@@ -107,9 +107,8 @@ Texture decode_texture(const std::string& name, const unsigned char* bytes, std:
                           std::string("cannot decode the image (") + stbi_failure_reason() + ")");
     };
     if (stbi_is_hdr_from_memory(bytes, len)) {
-        std::unique_ptr<float, void (*)(void*)> data(stbi_loadf_from_memory(bytes, len, &w, &h,
-                                                                            &comp, 3),
-                                                     stbi_image_free);
+        std::unique_ptr<float, void (*)(void*)> data(
+            stbi_loadf_from_memory(bytes, len, &w, &h, &comp, 3), stbi_image_free);
         if (!data) throw fail();
         for (std::size_t i = 0; i < texels.size(); ++i)
             texels[i] = glm::vec3(data.get()[3 * i], data.get()[3 * i + 1], data.get()[3 * i + 2]);
