@@ -76,10 +76,12 @@ int texels_per_leaf(const Hierarchy& h, std::uint32_t p, const DiscontinuityFiel
     int k = 1;
     if (const Texture* t = h.scene().texture_of(p)) {
         // The polygon's footprint in texels (the texture map's Jacobian at its centre), per leaf.
-        const glm::dvec2 ds = (polygon_texcoord(h.scene(), p, 1, 0.5) -
-                               polygon_texcoord(h.scene(), p, 0, 0.5)) * double(t->width());
-        const glm::dvec2 dt = (polygon_texcoord(h.scene(), p, 0.5, 1) -
-                               polygon_texcoord(h.scene(), p, 0.5, 0)) * double(t->height());
+        const glm::dvec2 ds =
+            (polygon_texcoord(h.scene(), p, 1, 0.5) - polygon_texcoord(h.scene(), p, 0, 0.5)) *
+            double(t->width());
+        const glm::dvec2 dt =
+            (polygon_texcoord(h.scene(), p, 0.5, 1) - polygon_texcoord(h.scene(), p, 0.5, 0)) *
+            double(t->height());
         const double side = std::sqrt(std::abs(ds.x * dt.y - ds.y * dt.x)) / double(1u << level);
         k = std::clamp(int(std::ceil(side)), 1, kMaxTextureTexelsPerLeaf);
     }
@@ -105,9 +107,9 @@ std::vector<glm::vec3> refined_texels(const Hierarchy& h, std::uint32_t p, int k
             const double u = (i + 0.5) / n, v = (j + 0.5) / n;
             dvec3 d(0.0);
             const bool flagged =
-                detail && detail->detail(p, u, v, polygon_point(poly, u, v),
-                                         std::uint64_t(j) * n + i,
-                                         DiscontinuityField::Reconstruction::Leaf, d);
+                detail &&
+                detail->detail(p, u, v, polygon_point(poly, u, v), std::uint64_t(j) * n + i,
+                               DiscontinuityField::Reconstruction::Leaf, d);
             if (h.scene().texture_of(p))
                 B = glm::max(m.exitance() + reflectance_at(h.scene(), p, u, v) *
                                                 (h.irradiance({p, level, leaf}) + d),

@@ -58,7 +58,7 @@ struct Vertex { // attributes of solution.vert
     float position[3]; ///< scene-local (world minus the scene centre), for float precision
     float grid[3];     ///< (u n, v n, triangle ? 1 : 0)
     std::uint32_t node;
-    float st[2];       ///< texture coordinates (textured polygons; else 0)
+    float st[2]; ///< texture coordinates (textured polygons; else 0)
 };
 static_assert(sizeof(Vertex) == 36);
 
@@ -275,7 +275,7 @@ struct SolutionRenderer::Impl {
     gl::VertexArray vao;
     gl::Program program;
     std::vector<DrawRun> runs;
-    std::vector<gl::Texture> textures; ///< Scene::textures, linear RGB32F with their mipmaps
+    std::vector<gl::Texture> textures;  ///< Scene::textures, linear RGB32F with their mipmaps
     std::vector<std::uint8_t> textured; ///< per polygon: drawn with its texture
 
     // Per-frame scratch.
@@ -346,8 +346,8 @@ void SolutionRenderer::Impl::build(const Hierarchy& h) {
                 world[v] = P;
                 glm::vec2 st(0.f);
                 if (s.texture_of(std::uint32_t(p)))
-                    st = glm::vec2(polygon_texcoord(s, std::uint32_t(p), double(i) / g.n,
-                                                    double(j) / g.n));
+                    st = glm::vec2(
+                        polygon_texcoord(s, std::uint32_t(p), double(i) / g.n, double(j) / g.n));
                 verts[v] = {{float(q.x), float(q.y), float(q.z)},
                             {float(i), float(j), g.triangle ? 1.f : 0.f},
                             v,
@@ -432,9 +432,8 @@ void SolutionRenderer::Impl::build(const Hierarchy& h) {
             tex.storage_2d(GLsizei(t.levels.size()), GL_RGB32F, t.width(), t.height());
             glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
             for (std::size_t l = 0; l < t.levels.size(); ++l)
-                glTextureSubImage2D(tex.id(), GLint(l), 0, 0, t.levels[l].width,
-                                    t.levels[l].height, GL_RGB, GL_FLOAT,
-                                    t.levels[l].texels.data());
+                glTextureSubImage2D(tex.id(), GLint(l), 0, 0, t.levels[l].width, t.levels[l].height,
+                                    GL_RGB, GL_FLOAT, t.levels[l].texels.data());
             glTextureParameteri(tex.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
             glTextureParameteri(tex.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
             glTextureParameteri(tex.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);

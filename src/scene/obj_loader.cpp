@@ -200,9 +200,9 @@ struct MtlMaterial {
 /// `-clamp on`, ...; options are skipped, `options` lists them). Backslashes become slashes.
 std::string map_file_name(const std::vector<std::string>& w, std::string& options) {
     static const std::map<std::string, int> arity = {
-        {"-blendu", 1}, {"-blendv", 1}, {"-boost", 1}, {"-mm", 2},    {"-o", 3},
-        {"-s", 3},      {"-t", 3},      {"-texres", 1}, {"-clamp", 1}, {"-bm", 1},
-        {"-imfchan", 1}, {"-type", 1},  {"-cc", 1}};
+        {"-blendu", 1},  {"-blendv", 1}, {"-boost", 1},  {"-mm", 2},    {"-o", 3},
+        {"-s", 3},       {"-t", 3},      {"-texres", 1}, {"-clamp", 1}, {"-bm", 1},
+        {"-imfchan", 1}, {"-type", 1},   {"-cc", 1}};
     std::size_t i = 1;
     while (i < w.size()) {
         const auto it = arity.find(w[i]);
@@ -529,8 +529,7 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
                                      "texture coordinate '" + quoted_excerpt(w[k + 1]) +
                                          "' is not a finite number");
             }
-            if (w.size() < 2)
-                throw InputError(path, line, "vt needs at least 1 value");
+            if (w.size() < 2) throw InputError(path, line, "vt needs at least 1 value");
             texcoords.emplace_back(t.x, 1.0 - t.y);
         } else if (key == "vn") {
             ++normals;
@@ -765,9 +764,8 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
                           "' without texture coordinates: Kd times the texture's mean");
             m = it->second;
         }
-        const AddResult r =
-            add_polygon(scene, corners, m, g, 1e-6, textured && !corner_uv.empty() ? &corner_uv
-                                                                                  : nullptr);
+        const AddResult r = add_polygon(scene, corners, m, g, 1e-6,
+                                        textured && !corner_uv.empty() ? &corner_uv : nullptr);
         if (r.degenerate && degenerate++ == 0) first_degenerate = place;
         if (r.split && corners.size() == 4 && split_quads++ == 0)
             first_split = place + ": face of group '" + scene.groups[g] +
