@@ -128,6 +128,9 @@ TEST(Gltf, UnsupportedModesAndMissingImagesAreWarnings) {
     const Scene lines = load_gltf(data("lines.gltf"));
     EXPECT_EQ(lines.polygons.size(), 4u) << "the lines primitive skipped (in both instances)";
     EXPECT_TRUE(has_warning(lines, "mesh 0 primitive 0: mode 1"));
+    EXPECT_FALSE(has_warning(lines, "extensions not read")) << "emissive strength is read";
+    EXPECT_TRUE(has_warning(load_gltf(data("lights.gltf")),
+                            "lights.gltf: extensions not read: KHR_lights_punctual"));
     const Scene img = load_gltf(data("missing_image.gltf"));
     ASSERT_EQ(img.polygons.size(), 2u);
     EXPECT_EQ(img.materials.at(0).texture, -1);

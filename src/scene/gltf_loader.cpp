@@ -128,6 +128,16 @@ class GltfReader {
     Scene read() {
         Scene scene;
         scene.source = path_;
+        // Extensions: KHR_materials_emissive_strength is read; the others are named once.
+        std::string unread;
+        for (const std::string& e : m_.extensionsUsed)
+            if (e != "KHR_materials_emissive_strength") unread += (unread.empty() ? "" : ", ") + e;
+        if (!unread.empty())
+            warnings_.push_back(path_ + ": extensions not read: " + unread);
+        for (const std::string& e : m_.extensionsRequired)
+            if (e != "KHR_materials_emissive_strength")
+                warnings_.push_back(path_ + ": the file requires extension " + e +
+                                    ", which is not read: the scene may not be what it shows");
         const std::vector<int> roots = root_nodes();
         std::vector<int> stack;
         for (int r : roots) visit(scene, r, glm::dmat4(1.0), stack);
@@ -410,6 +420,8 @@ class GltfReader {
                               "(mode 4); skipped");
                 continue;
             }
+            if (!prim.targets.empty())
+                warn_once("morph", pname + ": morph targets are ignored (the base mesh is used)");
             const auto pos = prim.attributes.find("POSITION");
             if (pos == prim.attributes.end()) throw error(pname + " has no POSITION");
             const std::vector<double> p = accessor(pos->second, 3, pname + " POSITION");

@@ -107,6 +107,8 @@ write_gltf("bad_index", nodes_doc, buf_bad)
 variant("cycle", lambda d: d["nodes"][2].update(children=[0]))
 variant("bad_mesh", lambda d: d["nodes"][4].update(mesh=9))
 variant("lines", lambda d: d["meshes"][0]["primitives"][0].update(mode=1))
+variant("lights", lambda d: d.update(extensionsUsed=["KHR_materials_emissive_strength",
+                                                      "KHR_lights_punctual"]))
 with open(os.path.join(HERE, "not_json.gltf"), "w") as f:
     f.write("{ this is not json\n")
 d = copy.deepcopy(nodes_doc)
