@@ -4,6 +4,7 @@
 
 in vec3 v_colour;
 in vec3 v_grid;
+in vec2 v_st;
 
 layout(location = 0) out vec4 out_colour;
 
@@ -14,6 +15,12 @@ layout(location = 4) uniform int tone_map;     // 1: Reinhard + sRGB encode (for
 layout(location = 5) uniform float reinhard_white; // white point in scaled units
 // Highlight pass (RenderOptions::highlight): alpha > 0 writes this colour as is, unscaled.
 layout(location = 6) uniform vec4 highlight;
+// Textured draws (smooth radiosity): v_colour is rho (E + ambient); the value shown is
+// Be + texel * v_colour, the texel's linear reflectance (trilinear through the mipmap).
+layout(location = 7) uniform int textured;
+layout(location = 8) uniform vec3 emitted;      // Be of the draw's material [W unit^-2]
+layout(location = 9) uniform uint primitive_base; // first triangle of this draw in triangle_leaf
+layout(binding = 0) uniform sampler2D reflectance_map;
 
 // Flat values: the leaf of each triangle (gl_PrimitiveID counts triangles from the start of the
 // single draw call), and RGB per leaf [W unit^-2], rewritten every frame.
@@ -47,8 +54,10 @@ void main() {
     if (!gl_FrontFacing) {
         c = vec3(0.0); // the back of a polygon leaves no light
     } else if (flat_shading != 0) {
-        uint leaf = triangle_leaf[gl_PrimitiveID];
+        uint leaf = triangle_leaf[primitive_base + uint(gl_PrimitiveID)];
         c = vec3(leaf_rgb[3u * leaf], leaf_rgb[3u * leaf + 1u], leaf_rgb[3u * leaf + 2u]);
+    } else if (textured != 0) {
+        c = emitted + texture(reflectance_map, v_st).rgb * v_colour;
     } else {
         c = v_colour;
     }

@@ -331,7 +331,8 @@ TEST(Corpus, NormalAndTextureIndicesReferringToNothingAreOnlyWarned) {
     const Scene s = load_obj(corpus("no_normals.obj"));
     EXPECT_EQ(s.polygons.size(), 2u);
     expect_warning(s, "no_normals.obj:8: face normal index 1 refers to no normal (0 defined so "
-                      "far): ignored (texture coordinates and normals are not used) (3 times");
+                      "far): ignored (normals are not used; a face without texture coordinates "
+                      "has none) (3 times");
     expect_warning(s, "no_normals.obj:9: face texture coordinate index 1 refers to no texture "
                       "coordinate");
 }
@@ -339,8 +340,11 @@ TEST(Corpus, NormalAndTextureIndicesReferringToNothingAreOnlyWarned) {
 TEST(Corpus, TexturesAndTransparencyAreWarned) {
     const Scene s = load_obj(corpus("textures.obj"));
     EXPECT_EQ(s.materials.at(0).rho, dvec3(0.6, 0.4, 0.2));
-    expect_warning(s, "textures.mtl:3: textures (map_Kd) are not read: the reflectance of "
-                      "material 'wood' is its Kd alone");
+    expect_warning(s, "textures.mtl:3: map_Kd options (-s) are not supported: ignored");
+    expect_warning(s, "textures.mtl:3: texture not read (");
+    expect_warning(s, "wood.png: cannot open the texture): its materials use their Kd alone");
+    EXPECT_EQ(s.materials.at(0).texture, -1);
+    EXPECT_TRUE(s.textures.empty());
     expect_warning(s, "textures.mtl:4: transparency (d 0.5) of material 'wood' is not modelled");
 }
 

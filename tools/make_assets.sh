@@ -10,3 +10,6 @@ hemirad="${1:-$root/build}/hemirad"
 for name in cornell cie53 cie56 cie57 cie58 room402 scene3138; do
   "$hemirad" scene "$name" --obj "$root/assets/$name.obj" >/dev/null
 done
+# The textured room (OBJ/MTL + PNG) and the glTF room (.gltf + .bin), written by a generator of
+# their own (Python standard library only).
+python3 "$root/tools/make_texture_assets.py" "$root/assets"

@@ -19,6 +19,7 @@ packages=(
   nlohmann-json3-dev                                       # SCENE.json files
   pybind11-dev python3-dev python3-numpy                   # the Python module (python/)
   dpkg-dev                                                 # cpack -G DEB: dpkg-shlibdeps
+  libstb-dev libtinygltf-dev                               # textures (PNG, JPEG), glTF 2.0
   xvfb xauth                                               # the viewer's tests run under Xvfb
   clang libclang-rt-14-dev                                 # tools/fuzz.sh: libFuzzer, sanitizers
   libopenmpi-dev openmpi-bin                               # mpirun -np N: ranks (docs/scaling.md)

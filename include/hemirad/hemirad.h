@@ -13,9 +13,11 @@
 //
 // What is where:
 //   scene.h, scene_io.h     the scene (polygons, groups, luminaires, cameras); loading OBJ,
-//                           SCENE.json and the built-in scenes; writing OBJ
+//                           SCENE.json, glTF 2.0 and the built-in scenes; writing OBJ
+//   texture.h               textures (PNG, JPEG: map_Kd, glTF baseColorTexture) as reflectance
 //   photometry.h            luminaires: IES files, point sources, spots
 //   solver.h                SolverOptions, Solver (the loop), ShotRecord (the shot log)
+//   collective.h            what a solve across MPI ranks needs (rank, size, all-gather)
 //   provider.h              form-factor methods (hybrid, analytic, hemicube; reference, pdm, sr)
 //   hierarchy.h, patch.h    the patch quadtrees that hold the solution
 //   readout.h, gather.h     irradiance at points (interpolated, or by final gather), per group
@@ -31,6 +33,7 @@
 //   version.h               HEMIRAD_VERSION
 #pragma once
 
+#include "hemirad/collective.h"
 #include "hemirad/error.h"
 #include "hemirad/export.h"
 #include "hemirad/form_factors.h"
@@ -52,5 +55,6 @@
 #include "hemirad/scene_io.h"
 #include "hemirad/solution_file.h"
 #include "hemirad/solver.h"
+#include "hemirad/texture.h"
 #include "hemirad/validation_scenes.h"
 #include "hemirad/version.h"

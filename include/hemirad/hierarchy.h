@@ -69,7 +69,17 @@ public:
     const dvec3& unshot_power(std::uint32_t polygon) const { return unshot_[polygon]; }
     dvec3 total_unshot_power() const;
 
-    /// Radiosity B = Be + rho*H of a node (valid for pushed polygons) [W unit^-2].
+    /// Reflectance of a node per channel: its material's rho, or, on a textured polygon, the
+    /// texture's mean over a leaf (patch_reflectance(), patch.h) and the area-weighted mean of
+    /// those over a larger node. Light received at a node is reflected leaf by leaf.
+    dvec3 reflectance(const PatchAddress& a) const {
+        return rho_base_.empty() || rho_base_[a.polygon] == kUntextured
+                   ? scene_->material_of(scene_->polygons[a.polygon]).rho
+                   : dvec3(rho_[rho_base_[a.polygon] + level_offset(int(a.level)) + a.index]);
+    }
+
+    /// Radiosity B = Be + rho*H of a node (valid for pushed polygons) [W unit^-2]; on a
+    /// textured polygon rho is the node's mean reflectance (exact at leaves).
     dvec3 radiosity(const PatchAddress& a) const;
     /// Irradiance H of a node, including what is still unpushed above and at it.
     dvec3 irradiance(const PatchAddress& a) const;
@@ -90,8 +100,14 @@ public:
 private:
     void pull_path(const PatchAddress& a);
 
+    static constexpr std::uint64_t kUntextured = ~std::uint64_t(0);
+
     const Scene* scene_;
     Discretisation disc_;
+    /// Per-node reflectance of textured polygons (empty in an untextured scene): the nodes of
+    /// polygon p from rho_base_[p] on, laid out like nodes_; kUntextured for the others.
+    std::vector<std::uint64_t> rho_base_;
+    std::vector<glm::vec3> rho_;
     std::vector<std::uint64_t> base_; ///< first node of each polygon
     std::vector<Node> nodes_;
     std::vector<dvec3> unshot_;

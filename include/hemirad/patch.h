@@ -62,6 +62,21 @@ std::uint32_t patch_parent(bool triangle, std::uint32_t level, std::uint32_t ind
 std::array<std::uint32_t, 4> patch_neighbours(bool triangle, std::uint32_t level,
                                               std::uint32_t index);
 
+/// Texture coordinates of parameter point (u, v) of polygon `polygon` (the same bilinear or
+/// affine map as polygon_point()); the scene must have texcoords.
+glm::dvec2 polygon_texcoord(const Scene& scene, std::uint32_t polygon, double u, double v);
+
+/// The reflectance of a patch, per channel: its material's rho, times, for a textured polygon,
+/// the texture's mean over the patch (patch_reflectance.cpp): the patch is split into 8 x 8
+/// equal-area parts (a quad's parameter cells, a triangle's midpoint sub-triangles), each
+/// sampled at its centre from the mip level whose texels are about 1/8 of the patch's footprint
+/// wide (the footprint's side: the square root of its area in level-0 texels), so a leaf
+/// averages the box-filtered texture over its own footprint.
+dvec3 patch_reflectance(const Scene& scene, std::uint32_t polygon, std::uint32_t level,
+                        std::uint32_t index);
+/// The reflectance at parameter point (u, v): rho times the level-0 texel there.
+dvec3 reflectance_at(const Scene& scene, std::uint32_t polygon, double u, double v);
+
 /// Is `index` a valid patch of `level` (for triangles, every cell index is valid).
 inline bool patch_valid(std::uint32_t level, std::uint32_t index) {
     return index < (std::uint32_t(1) << (2 * level));

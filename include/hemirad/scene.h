@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "hemirad/photometry.h"
+#include "hemirad/texture.h"
 
 namespace hemirad {
 
@@ -20,6 +21,10 @@ struct Material {
     std::string name;
     dvec3 rho{0.0};        ///< diffuse reflectance per RGB channel, each in [0, 1)
     dvec3 Ke{0.0};         ///< emitted radiance per channel [W sr^-1 unit^-2]; exitance = pi*Ke
+    /// Index into Scene::textures, or -1: the reflectance at a point is then rho times the
+    /// texel there (rho is the multiplier: OBJ Kd, glTF baseColorFactor); a leaf patch's is rho
+    /// times the texels' mean over the leaf (patch_reflectance(), patch.h).
+    int texture = -1;
     dvec3 exitance() const; ///< emitted radiosity Be = pi*Ke [W unit^-2]
 };
 
@@ -34,6 +39,10 @@ struct Polygon {
     bool is_triangle() const { return count == 3; }
     dvec3 centroid() const;
 };
+
+/// Texture coordinates of a polygon's corners (texture.h: (0, 0) the image's top-left, t down),
+/// in the order of Polygon::v; [3] unused for triangles.
+using TexCoords = std::array<glm::vec2, 4>;
 
 struct Camera {
     std::string name = "default";
@@ -60,14 +69,22 @@ struct Scene {
     /// emitting polygons, their direct light gathered exactly at points.
     std::vector<Luminaire> luminaires;
     std::vector<std::string> warnings; ///< things the loader fixed or dropped, for reports
+    /// Reflectance textures (Material::texture); empty in an untextured scene.
+    std::vector<Texture> textures;
+    /// Per polygon (parallel to `polygons`), or empty when no polygon has texture coordinates.
+    std::vector<TexCoords> texcoords;
 
     const Material& material_of(const Polygon& p) const { return materials[p.material]; }
+    /// The texture of polygon `polygon`'s material, or null (untextured, or no coordinates).
+    const Texture* texture_of(std::uint32_t polygon) const;
     /// Everything emitted [W]: surface_power() + luminaire_power().
     dvec3 emitted_power() const;
     dvec3 surface_power() const;   ///< of the polygons: sum of pi*Ke*area [W]
     dvec3 luminaire_power() const; ///< of the luminaires: sum of lumens/683, equal RGB [W]
     double total_area() const;
-    double max_reflectance() const;    ///< max over materials in use and channels
+    /// Max over materials in use and channels; a textured material's rho times its texture's
+    /// largest texel.
+    double max_reflectance() const;
     /// Of the polygons (luminaires left out: the automatic patch size derives from it).
     Bounds bounds() const;
     std::size_t triangle_count() const;
@@ -81,14 +98,16 @@ struct Scene {
 /// Adds a polygon after validating it: non-finite corners throw InputError; a degenerate
 /// polygon (zero area, repeated corners) returns false and is not added; a non-planar or
 /// concave quad is split into two triangles (returns true, and `split` is set).
-/// `where` names the origin for messages ("file:line").
+/// With `uv` (one per corner), the texture coordinates follow the corners into the polygons
+/// made (Scene::texcoords is then kept parallel to the polygons, zeros for those without).
 struct AddResult {
     int added = 0;      ///< polygons added (0, 1 or 2)
     bool split = false; ///< a quad was split into triangles
     bool degenerate = false;
 };
 AddResult add_polygon(Scene& scene, const std::vector<dvec3>& corners, std::uint32_t material,
-                      std::uint32_t group, double planarity_tolerance = 1e-6);
+                      std::uint32_t group, double planarity_tolerance = 1e-6,
+                      const std::vector<glm::dvec2>* uv = nullptr);
 
 /// The warning finish_scene() adds when nothing emits (its start, for filtering).
 inline constexpr const char* kNoEmitterWarning = "no surface emits light";

@@ -21,14 +21,15 @@ struct ObjOptions {
     double max_reflectance = 0.98;
 };
 
-/// Loads "NAME" (a built-in scene), a path to an OBJ file, or a SCENE.json project file (a
-/// path ending in .json: load_scene_json). Throws InputError on bad input.
+/// Loads "NAME" (a built-in scene), a path to an OBJ file, a glTF 2.0 file (a path ending in
+/// .gltf or .glb: load_gltf) or a SCENE.json project file (a path ending in .json:
+/// load_scene_json). The one place that dispatches by extension. Throws InputError on bad input.
 Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin = {},
                  const ObjOptions& obj = {});
 
 /// A SCENE.json project file assembles a scene (paths relative to the JSON file's folder):
 ///
-///   {"include": ["room.obj"],                          geometry: OBJ files, at least one
+///   {"include": ["room.obj"],                 geometry: OBJ or glTF files, at least one
 ///    "luminaires": [                                    point sources (photometry.h)
 ///      {"ies": "downlight.ies", "position": [2, 2.8, 2], "aim": [0, -1, 0],
 ///       "rotation": 0, "multiplier": 1, "name": "D1"},
@@ -49,6 +50,31 @@ Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin 
 Scene load_scene_json(const std::string& path, const ObjOptions& obj = {});
 /// Whether a scene argument names a SCENE.json file (ends in .json, any case).
 bool is_scene_json(const std::string& path);
+
+/// Loads a glTF 2.0 file, `.gltf` (JSON, with its .bin buffers and images beside it or as data
+/// URIs) or `.glb` (binary), with Debian's TinyGLTF (gltf_loader.cpp):
+///  - the node tree of the default scene (else scene 0; a file without scenes: every root
+///    node), each node's `matrix` or `translation` x `rotation` x `scale` composed from the root
+///    down; a transform that mirrors flips the winding back (glTF 3.7.4);
+///  - mesh primitives of mode 4 (triangles; other modes are warned and skipped), POSITION and,
+///    for a textured material, TEXCOORD_0, indices of any component type (or none);
+///  - materials: `baseColorFactor` (linear RGB) is the reflectance rho (a channel of 1 or more
+///    becomes ObjOptions::max_reflectance: quietly under a texture, else with a warning),
+///    `baseColorTexture` multiplies it (texture.h; through TEXCOORD_0); `emissiveFactor` times
+///    `KHR_materials_emissive_strength.emissiveStrength` is the emitted radiance Ke, as OBJ's Ke
+///    (exitance pi Ke). Metallic, roughness, normal and occlusion maps, emissiveTexture and
+///    alpha are not used (the last two warned); a primitive without a material gets 'default';
+///  - perspective cameras (a node's -z is the view direction, +y up, yfov vertical): the first
+///    in the order the node tree is walked is the default view;
+///  - surface groups: a mesh node's name, else its material's name, else "node N".
+/// Units: glTF lengths are metres, and hemirad takes them as its scene unit: irradiance is per
+/// m², `--lux` applies. Errors name the file and the element ("accessor 3", "node 5"):
+/// accessors or views outside their buffers, indices outside the vertices, non-finite numbers,
+/// a node that is its own ancestor; TinyGLTF's own messages are passed on. A texture that
+/// cannot be read is a warning (the material keeps baseColorFactor alone).
+Scene load_gltf(const std::string& path, const ObjOptions& options = {});
+/// Whether a scene argument names a glTF file (ends in .gltf or .glb, any case).
+bool is_gltf(const std::string& path);
 
 /// Loads an OBJ file and the MTL files it names (obj_loader.cpp lists what is tolerated, with a
 /// warning each, and what is an error). Throws InputError naming file, line and value.

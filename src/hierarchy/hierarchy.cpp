@@ -57,13 +57,36 @@ Hierarchy::Hierarchy(const Scene& scene, const Discretisation& disc)
         }
         unshot_[p] = dvec3(Be) * poly.area;
     }
+    // Textured polygons: each leaf's reflectance is the texture's mean over it; nodes above
+    // hold the area-weighted means of their children.
+    for (std::uint32_t p = 0; p < np; ++p) {
+        if (!scene.texture_of(p)) continue;
+        if (rho_base_.empty()) rho_base_.assign(np, kUntextured);
+        rho_base_[p] = rho_.size();
+        const int depth = disc.depth[p];
+        rho_.resize(rho_.size() + tree_size(depth));
+        glm::vec3* rho = rho_.data() + rho_base_[p];
+        const Node* tree = nodes_.data() + base_[p];
+        const std::uint32_t nl = 1u << (2 * depth);
+        for (std::uint32_t i = 0; i < nl; ++i)
+            rho[level_offset(depth) + i] = glm::vec3(patch_reflectance(scene, p, depth, i));
+        const bool tri = scene.polygons[p].is_triangle();
+        for (int level = depth - 1; level >= 0; --level)
+            for (std::uint32_t i = 0; i < (1u << (2 * level)); ++i) {
+                glm::dvec3 sum(0.0);
+                for (std::uint32_t c : patch_children(tri, level, i))
+                    sum += glm::dvec3(rho[level_offset(level + 1) + c]) *
+                           double(tree[level_offset(level + 1) + c].area);
+                rho[level_offset(level) + i] =
+                    glm::vec3(sum / double(tree[level_offset(level) + i].area));
+            }
+    }
 }
 
 void Hierarchy::receive(const PatchAddress& a, const dvec3& irradiance) {
     Node& n = node(a);
     n.dI += glm::vec3(irradiance);
-    const dvec3& rho = scene_->material_of(scene_->polygons[a.polygon]).rho;
-    unshot_[a.polygon] += rho * irradiance * double(n.area);
+    unshot_[a.polygon] += reflectance(a) * irradiance * double(n.area);
     dirty_[a.polygon] = 1;
 }
 
@@ -85,10 +108,13 @@ void Hierarchy::push_pull(std::uint32_t p) {
     }
     Node* leaves = tree + level_offset(depth);
     const std::uint32_t nl = 1u << (2 * depth);
+    const glm::vec3* leaf_rho = rho_base_.empty() || rho_base_[p] == kUntextured
+                                    ? nullptr
+                                    : rho_.data() + rho_base_[p] + level_offset(depth);
     for (std::uint32_t i = 0; i < nl; ++i) {
         Node& l = leaves[i];
         l.H += l.dI;
-        l.dB += rho * l.dI;
+        l.dB += (leaf_rho ? leaf_rho[i] : rho) * l.dI;
         l.dI = glm::vec3(0.f);
     }
     // Pull: area-weighted averages from the leaves up to the root.
@@ -159,7 +185,7 @@ dvec3 Hierarchy::total_unshot_power() const {
 
 dvec3 Hierarchy::radiosity(const PatchAddress& a) const {
     const Material& m = scene_->material_of(scene_->polygons[a.polygon]);
-    return m.exitance() + m.rho * irradiance(a);
+    return m.exitance() + reflectance(a) * irradiance(a);
 }
 
 dvec3 Hierarchy::irradiance(const PatchAddress& a) const {
@@ -188,7 +214,9 @@ void Hierarchy::restore_state(const std::vector<Node>& nodes, const std::vector<
 }
 
 double Hierarchy::bytes_per_leaf() const {
-    return leaves_ ? double(nodes_.size() * sizeof(Node)) / double(leaves_) : 0.0;
+    return leaves_ ? double(nodes_.size() * sizeof(Node) + rho_.size() * sizeof(glm::vec3)) /
+                         double(leaves_)
+                   : 0.0;
 }
 
 } // namespace hemirad

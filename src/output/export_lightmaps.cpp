@@ -64,19 +64,37 @@ std::string lightmap_stem(const std::string& group) {
 
 namespace {
 
-// Texels per leaf side of polygon p's chart: 4 for a quad with a flagged leaf (with detail).
+/// Most texels per leaf side of a textured quad's chart (texture detail).
+constexpr int kMaxTextureTexelsPerLeaf = 8;
+
+// Texels per leaf side of polygon p's chart: 4 for a quad with a flagged leaf (with detail); for
+// a textured quad, about one per texture texel (at most kMaxTextureTexelsPerLeaf).
 int texels_per_leaf(const Hierarchy& h, std::uint32_t p, const DiscontinuityField* detail) {
     const Polygon& poly = h.scene().polygons[p];
-    if (!detail || poly.is_triangle()) return 1;
+    if (poly.is_triangle()) return 1;
     const std::uint32_t level = std::uint32_t(h.depth(p));
-    for (std::uint32_t i = 0; i < (1u << (2 * level)); ++i)
-        if (detail->flagged(p, i)) return 4;
-    return 1;
+    int k = 1;
+    if (const Texture* t = h.scene().texture_of(p)) {
+        // The polygon's footprint in texels (the texture map's Jacobian at its centre), per leaf.
+        const glm::dvec2 ds =
+            (polygon_texcoord(h.scene(), p, 1, 0.5) - polygon_texcoord(h.scene(), p, 0, 0.5)) *
+            double(t->width());
+        const glm::dvec2 dt =
+            (polygon_texcoord(h.scene(), p, 0.5, 1) - polygon_texcoord(h.scene(), p, 0.5, 0)) *
+            double(t->height());
+        const double side = std::sqrt(std::abs(ds.x * dt.y - ds.y * dt.x)) / double(1u << level);
+        k = std::clamp(int(std::ceil(side)), 1, kMaxTextureTexelsPerLeaf);
+    }
+    if (detail)
+        for (std::uint32_t i = 0; i < (1u << (2 * level)); ++i)
+            if (detail->flagged(p, i)) return std::max(k, 4);
+    return k;
 }
 
-// A refined chart (quads): k x k texels per leaf, the flagged leaves' texels with detail.
+// A refined chart (quads): k x k texels per leaf, the flagged leaves' texels with detail (if
+// `detail`), a textured polygon's texels with its texture: Be + texel rho (H + detail).
 std::vector<glm::vec3> refined_texels(const Hierarchy& h, std::uint32_t p, int k,
-                                      const DiscontinuityField& detail) {
+                                      const DiscontinuityField* detail) {
     const Polygon& poly = h.scene().polygons[p];
     const Material& m = h.scene().material_of(poly);
     const std::uint32_t level = std::uint32_t(h.depth(p));
@@ -87,9 +105,16 @@ std::vector<glm::vec3> refined_texels(const Hierarchy& h, std::uint32_t p, int k
             const std::uint32_t leaf = std::uint32_t((j / k) * leaves + i / k);
             dvec3 B = h.radiosity({p, level, leaf});
             const double u = (i + 0.5) / n, v = (j + 0.5) / n;
-            dvec3 d;
-            if (detail.detail(p, u, v, polygon_point(poly, u, v), std::uint64_t(j) * n + i,
-                              DiscontinuityField::Reconstruction::Leaf, d))
+            dvec3 d(0.0);
+            const bool flagged =
+                detail &&
+                detail->detail(p, u, v, polygon_point(poly, u, v), std::uint64_t(j) * n + i,
+                               DiscontinuityField::Reconstruction::Leaf, d);
+            if (h.scene().texture_of(p))
+                B = glm::max(m.exitance() + reflectance_at(h.scene(), p, u, v) *
+                                                (h.irradiance({p, level, leaf}) + d),
+                             m.exitance());
+            else if (flagged)
                 B = glm::max(B + m.rho * d, m.exitance());
             t[std::size_t(j) * n + i] = glm::vec3(B);
         }
@@ -139,7 +164,7 @@ Lightmap build_lightmap(const Hierarchy& h, std::uint32_t group, const std::stri
     for (const LightmapChart& c : lm.charts) {
         const int k = c.n >> h.depth(c.polygon);
         const std::vector<glm::vec3> t =
-            k > 1 ? refined_texels(h, c.polygon, k, *detail) : chart_texels(h, c.polygon);
+            k > 1 ? refined_texels(h, c.polygon, k, detail) : chart_texels(h, c.polygon);
         for (int j = -pad; j < c.n + pad; ++j)
             for (int i = -pad; i < c.n + pad; ++i) {
                 const int ci = std::clamp(i, 0, c.n - 1), cj = std::clamp(j, 0, c.n - 1);

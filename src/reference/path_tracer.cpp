@@ -129,9 +129,10 @@ class PathTracer {
                 }
             }
             if (max_bounces_ > 0 && bounce + 1 > max_bounces_) break;
-            const double q = std::min(1.0, max_channel(m.rho));
+            const dvec3 rho = reflectance_at(scene_, hit.polygon, hit.u, hit.v); // the texel
+            const double q = std::min(1.0, max_channel(rho));
             if (!(q > 0) || rng.uniform() >= q) break;
-            beta *= m.rho / q;
+            beta *= rho / q;
             x = x + hit.t * w + offset_ * p.normal;
             n = p.normal;
             ignore = hit.polygon;

@@ -48,9 +48,10 @@ DiscontinuityStats resolve_discontinuities(ImageRGB& image, const Hierarchy& h,
                     continue;
                 const Material& m = scene.material_of(scene.polygons[hit.polygon]);
                 const dvec3 floor_value = irradiance ? dvec3(0.0) : m.exitance();
+                const dvec3 rho = reflectance_at(scene, hit.polygon, hit.u, hit.v); // texel
                 float* px = image.at(x, y);
                 for (int c = 0; c < 3; ++c) {
-                    const double add = irradiance ? detail[c] : m.rho[c] * detail[c];
+                    const double add = irradiance ? detail[c] : rho[c] * detail[c];
                     px[c] = float(std::max(double(px[c]) + add, floor_value[c]));
                 }
                 pixels.fetch_add(1);

@@ -23,7 +23,14 @@
 // only coinciding vertices are welded, so a faint seam remains there.
 //
 // Flat shading shows each leaf's own value: the fragment shader finds the leaf of its triangle
-// through gl_PrimitiveID (one draw call for the whole scene) and a per-triangle leaf table.
+// through gl_PrimitiveID (plus the draw's first triangle) and a per-triangle leaf table.
+//
+// Textured polygons (texture.h) show texture detail: their smooth vertex value is rho (E +
+// ambient) without the texture, and the fragment shader multiplies it by the texel's linear
+// reflectance (trilinear, through the same box-filtered mipmap the solver averages) and adds
+// Be: B(x) = Be + texel(x) rho E(x). They are drawn in runs of consecutive polygons of one
+// textured material, one draw call each (an untextured scene is still one draw call). Flat
+// shading shows each leaf's own value, Be + rho_leaf E with the leaf's mean reflectance.
 #include "hemirad/render.h"
 
 #include <algorithm>
@@ -51,8 +58,17 @@ struct Vertex { // attributes of solution.vert
     float position[3]; ///< scene-local (world minus the scene centre), for float precision
     float grid[3];     ///< (u n, v n, triangle ? 1 : 0)
     std::uint32_t node;
+    float st[2]; ///< texture coordinates (textured polygons; else 0)
 };
-static_assert(sizeof(Vertex) == 28);
+static_assert(sizeof(Vertex) == 36);
+
+/// Consecutive polygons drawn with one call: untextured ones, or those of one textured material.
+struct DrawRun {
+    std::size_t first_index = 0, index_count = 0; ///< into the index buffer
+    std::uint32_t first_triangle = 0;             ///< gl_PrimitiveID offset into triangle_leaf
+    int texture = -1;                             ///< into SolutionRenderer::Impl::textures
+    glm::vec3 emitted{0.f};                       ///< the material's Be, added per fragment
+};
 
 /// One polygon's leaf grid in the shared buffers.
 struct PolygonGrid {
@@ -230,6 +246,9 @@ struct SolutionRenderer::Impl {
     gl::Buffer vertices, indices, triangle_leaf, node_rgb, leaf_rgb;
     gl::VertexArray vao;
     gl::Program program;
+    std::vector<DrawRun> runs;
+    std::vector<gl::Texture> textures;  ///< Scene::textures, linear RGB32F with their mipmaps
+    std::vector<std::uint8_t> textured; ///< per polygon: drawn with its texture
 
     // Per-frame scratch.
     std::vector<float> leaf_values;      ///< RGB per leaf
@@ -297,9 +316,14 @@ void SolutionRenderer::Impl::build(const Hierarchy& h) {
                 const dvec3 P = polygon_point(poly, double(i) / g.n, double(j) / g.n);
                 const dvec3 q = P - origin;
                 world[v] = P;
+                glm::vec2 st(0.f);
+                if (s.texture_of(std::uint32_t(p)))
+                    st = glm::vec2(
+                        polygon_texcoord(s, std::uint32_t(p), double(i) / g.n, double(j) / g.n));
                 verts[v] = {{float(q.x), float(q.y), float(q.z)},
                             {float(i), float(j), g.triangle ? 1.f : 0.f},
-                            v};
+                            v,
+                            {st.x, st.y}};
                 boundary[v] = i == 0 || j == 0 || j == g.n || i == imax;
             }
         }
@@ -333,8 +357,18 @@ void SolutionRenderer::Impl::build(const Hierarchy& h) {
     std::vector<std::uint32_t> tri_leaf;
     idx.reserve(index_count);
     tri_leaf.reserve(index_count / 3);
+    runs.clear();
+    textured.assign(s.polygons.size(), 0);
     for (std::size_t p = 0; p < s.polygons.size(); ++p) {
         const PolygonGrid& g = grids[p];
+        const Material& mat = s.material_of(s.polygons[p]);
+        textured[p] = s.texture_of(std::uint32_t(p)) != nullptr;
+        const int texture = textured[p] ? mat.texture : -1;
+        const glm::vec3 Be = textured[p] ? glm::vec3(mat.exitance()) : glm::vec3(0.f);
+        if (runs.empty() || runs.back().texture != texture || runs.back().emitted != Be) {
+            if (!runs.empty()) runs.back().index_count = idx.size() - runs.back().first_index;
+            runs.push_back({idx.size(), 0, std::uint32_t(tri_leaf.size()), texture, Be});
+        }
         std::array<std::uint32_t, 4> c{};
         for (std::uint32_t i = 0; i < g.n * g.n; ++i) {
             const int k = leaf_corners(g, i, c);
@@ -347,6 +381,21 @@ void SolutionRenderer::Impl::build(const Hierarchy& h) {
             }
         }
     }
+    if (!runs.empty()) runs.back().index_count = idx.size() - runs.back().first_index;
+    if (textures.empty())
+        for (const Texture& t : s.textures) {
+            gl::Texture tex = gl::Texture::create(GL_TEXTURE_2D);
+            tex.storage_2d(GLsizei(t.levels.size()), GL_RGB32F, t.width(), t.height());
+            glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+            for (std::size_t l = 0; l < t.levels.size(); ++l)
+                glTextureSubImage2D(tex.id(), GLint(l), 0, 0, t.levels[l].width, t.levels[l].height,
+                                    GL_RGB, GL_FLOAT, t.levels[l].texels.data());
+            glTextureParameteri(tex.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+            glTextureParameteri(tex.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+            glTextureParameteri(tex.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+            glTextureParameteri(tex.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+            textures.push_back(std::move(tex));
+        }
 
     vertices = gl::Buffer::create();
     vertices.storage(GLsizeiptr(verts.size() * sizeof(Vertex)), verts.data(), 0);
@@ -371,6 +420,7 @@ void SolutionRenderer::Impl::build(const Hierarchy& h) {
     glEnableVertexArrayAttrib(vao.id(), 2);
     glVertexArrayAttribIFormat(vao.id(), 2, 1, GL_UNSIGNED_INT, offsetof(Vertex, node));
     glVertexArrayAttribBinding(vao.id(), 2, 0);
+    vao.attribute(3, 0, 2, GL_FLOAT, offsetof(Vertex, st));
     glVertexArrayElementBuffer(vao.id(), indices.id());
 
     leaf_values.assign(3 * leaf_count, 0.f);
@@ -390,7 +440,11 @@ void SolutionRenderer::Impl::compute_colours(const Hierarchy& h, const RenderOpt
         const PolygonGrid& g = grids[p];
         const Material& m = s.material_of(s.polygons[p]);
         // Display value = Be + rho (E + ambient) for radiosity, E + ambient for irradiance.
-        const glm::vec3 Be = irradiance ? glm::vec3(0.f) : glm::vec3(m.exitance());
+        // Textured (smooth): rho (E + ambient) alone; the shader adds Be and the texel factor.
+        // Flat: every leaf's own value, with its mean reflectance.
+        const bool detail = textured[p] && !irradiance;
+        const glm::vec3 Be =
+            irradiance || (detail && smooth) ? glm::vec3(0.f) : glm::vec3(m.exitance());
         const glm::vec3 rho = irradiance ? glm::vec3(1.f) : glm::vec3(m.rho);
         const glm::vec3 amb(ambient);
         // A pushed polygon holds all its light in the leaves' H (and dI = 0); otherwise ask the
@@ -401,7 +455,8 @@ void SolutionRenderer::Impl::compute_colours(const Hierarchy& h, const RenderOpt
             const PatchAddress a{std::uint32_t(p), g.depth, i};
             const Hierarchy::Node& node = h.node(a);
             const glm::vec3 E = pushed ? node.H + node.dI : glm::vec3(h.irradiance(a));
-            const glm::vec3 value = Be + rho * (E + amb);
+            const glm::vec3 value =
+                Be + (detail && !smooth ? glm::vec3(h.reflectance(a)) : rho) * (E + amb);
             if (!smooth) {
                 float* out = &leaf_values[3 * (std::size_t(g.leaf_base) + i)];
                 out[0] = value.r, out[1] = value.g, out[2] = value.b;
@@ -462,7 +517,18 @@ void SolutionRenderer::Impl::draw_scene(const Camera& camera, const RenderOption
     glUniform1i(4, o.tone_map ? 1 : 0);
     glUniform1f(5, float(kReinhardWhite));
     glUniform4f(6, 0.f, 0.f, 0.f, 0.f);
-    glDrawElements(GL_TRIANGLES, GLsizei(index_count), GL_UNSIGNED_INT, nullptr);
+    const bool detail = o.quantity == RenderOptions::Quantity::Radiosity &&
+                        o.shading == RenderOptions::Shading::Smooth;
+    for (const DrawRun& r : runs) {
+        const bool tex = detail && r.texture >= 0;
+        glUniform1i(7, tex ? 1 : 0);
+        glUniform3f(8, r.emitted.r, r.emitted.g, r.emitted.b);
+        glUniform1ui(9, r.first_triangle);
+        if (tex) glBindTextureUnit(0, textures[std::size_t(r.texture)].id());
+        glDrawElements(GL_TRIANGLES, GLsizei(r.index_count), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(r.first_index * sizeof(std::uint32_t)));
+    }
+    glBindTextureUnit(0, 0);
     if (o.highlight) draw_highlight(camera, *o.highlight, o.highlight_colour, width, height);
 }
 
@@ -480,7 +546,7 @@ void SolutionRenderer::Impl::draw_highlight(const Camera& camera, const PatchAdd
     Vertex v[4] = {};
     for (int k = 0; k < g.count; ++k) {
         const dvec3 q = g.corners[std::size_t(k)] - origin;
-        v[k] = {{float(q.x), float(q.y), float(q.z)}, {0.f, 0.f, 0.f}, 0};
+        v[k] = {{float(q.x), float(q.y), float(q.z)}, {0.f, 0.f, 0.f}, 0, {0.f, 0.f}};
     }
     if (!highlight_vao) {
         highlight_vertices = gl::Buffer::create();
@@ -507,6 +573,7 @@ void SolutionRenderer::Impl::draw_highlight(const Camera& camera, const PatchAdd
     glUniformMatrix4fv(0, 1, GL_FALSE, glm::value_ptr(vp));
     glUniform1i(1, 1); // "flat": the vertex shader reads no node colours; the fragment
     glUniform1i(2, 0); // shader returns the highlight colour before any leaf lookup
+    glUniform1i(7, 0);
     const glm::vec3 c(colour);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);

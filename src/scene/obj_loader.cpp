@@ -13,7 +13,13 @@
 //     in a hemicube): dropped; back-to-back coincident faces (a two-sided sheet) are kept;
 //   - CR LF line ends, tabs, leading spaces, trailing comments, `\` line continuations,
 //     `o`/`g` after `usemtl` (the material carries on, as OBJ says), a material without Kd
-//     (reflectance 0), `map_Kd` (not read: Kd alone), `d` < 1 (surfaces stay opaque).
+//     (reflectance 0; with a `map_Kd`, ObjOptions::max_reflectance), `d` < 1 (surfaces stay
+//     opaque);
+//   - `map_Kd` (texture.h: PNG, JPEG, ...) multiplied by Kd, found relative to the MTL's folder,
+//     then by its base name there: a texture that is missing or cannot be decoded is a warning
+//     naming the MTL file:line, and the material keeps its Kd alone; map options (`-s`, `-o`,
+//     `-bm`, ...) are ignored with a warning; faces of a textured material without texture
+//     coordinates (`f v` or `f v//n`) get Kd times the texture's mean, with a warning.
 // Errors (InputError): a file that cannot be read, no polygons, a coordinate or colour that is
 // not a finite number, a face index of 0 or outside the vertices defined so far, a face of
 // fewer than 3 vertices, a negative Kd or Ke, an MTL library found nowhere.
@@ -185,7 +191,36 @@ class Notes {
 struct MtlMaterial {
     Material m;
     std::string place; ///< file:line of its newmtl
+    std::string map_kd{};       ///< the texture file named by map_Kd, resolved; "" = none
+    std::string map_kd_place{}; ///< file:line of the map_Kd
+    bool has_kd = false;
 };
+
+/// The file name of a `map_Kd` statement: the words after its options (`-s u v w`, `-o ...`,
+/// `-clamp on`, ...; options are skipped, `options` lists them). Backslashes become slashes.
+std::string map_file_name(const std::vector<std::string>& w, std::string& options) {
+    static const std::map<std::string, int> arity = {
+        {"-blendu", 1},  {"-blendv", 1}, {"-boost", 1},  {"-mm", 2},    {"-o", 3},
+        {"-s", 3},       {"-t", 3},      {"-texres", 1}, {"-clamp", 1}, {"-bm", 1},
+        {"-imfchan", 1}, {"-type", 1},   {"-cc", 1}};
+    std::size_t i = 1;
+    while (i < w.size()) {
+        const auto it = arity.find(w[i]);
+        if (it == arity.end()) break;
+        options += (options.empty() ? "" : " ") + w[i];
+        ++i;
+        // -o, -s, -t take 1 to 3 numbers.
+        for (int k = 0; k < it->second && i + 1 < w.size(); ++k) {
+            double x;
+            if (k > 0 && !parse_double(w[i], x)) break;
+            ++i;
+        }
+    }
+    std::string name;
+    for (; i < w.size(); ++i) name += (name.empty() ? "" : " ") + w[i];
+    std::replace(name.begin(), name.end(), '\\', '/');
+    return name;
+}
 
 /// Reads "Kd r [g b]" / "Ke r [g b]": one value means grey (g = b = r).
 dvec3 parse_colour(const std::vector<std::string>& w, const std::string& file, int line) {
@@ -214,9 +249,9 @@ void read_mtl(const std::string& path, const ObjOptions& options,
               std::vector<MtlMaterial>& materials, std::map<std::string, std::size_t>& by_name,
               Notes& notes) {
     std::size_t current = materials.size(); // index of the material being defined; none yet
-    bool current_has_kd = false;
     const auto close = [&] {
-        if (current < materials.size() && !current_has_kd && materials[current].m.Ke == dvec3(0.0))
+        if (current < materials.size() && !materials[current].has_kd &&
+            materials[current].map_kd.empty() && materials[current].m.Ke == dvec3(0.0))
             notes.add("mtl no Kd", materials[current].place,
                       "material '" + materials[current].m.name +
                           "' has no Kd: reflectance 0 (black)");
@@ -239,7 +274,6 @@ void read_mtl(const std::string& path, const ObjOptions& options,
                 materials[it->second] = {Material{name, dvec3(0.0), dvec3(0.0)}, place};
             }
             current = it->second;
-            current_has_kd = false;
             continue;
         }
         if (key == "Kd" || key == "Ke") {
@@ -270,14 +304,30 @@ void read_mtl(const std::string& path, const ObjOptions& options,
                               "receives): reflectance " +
                               num(options.max_reflectance) + " used there (--max-reflectance)");
             m.rho = rho;
-            current_has_kd = true;
+            materials[current].has_kd = true;
             continue;
         }
         if (current >= materials.size()) continue;
         if (key == "map_Kd") {
-            notes.add("mtl map_Kd", place,
-                      "textures (map_Kd) are not read: the reflectance of material '" +
-                          materials[current].m.name + "' is its Kd alone");
+            MtlMaterial& mm = materials[current];
+            std::string options;
+            const std::string name = map_file_name(w, options);
+            if (!options.empty())
+                notes.add("mtl map options", place,
+                          "map_Kd options (" + options + ") are not supported: ignored");
+            if (name.empty()) {
+                notes.add("mtl map_Kd empty", place,
+                          "map_Kd names no file: material '" + mm.m.name + "' uses its Kd");
+                continue;
+            }
+            const fs::path dir = fs::path(path).parent_path();
+            fs::path found = dir / name;
+            std::error_code ec;
+            if (!fs::is_regular_file(found, ec) &&
+                fs::is_regular_file(dir / fs::path(name).filename(), ec))
+                found = dir / fs::path(name).filename();
+            mm.map_kd = found.lexically_normal().string();
+            mm.map_kd_place = place;
             continue;
         }
         if (key == "d" && w.size() > 1) {
@@ -325,6 +375,7 @@ fs::path find_library(const std::string& obj, const std::string& name, std::stri
 
 struct Face {
     std::vector<std::uint32_t> v; ///< 0-based vertex indices
+    std::vector<long> t;          ///< 0-based texture coordinate indices, -1 where none
     int line = 0;
     int material = -1;            ///< usemtl index into `usemtl_names`, -1 before any usemtl
     std::uint32_t group_name = 0; ///< index into `group_names` (g/o in effect, may be "")
@@ -333,7 +384,8 @@ struct Face {
 /// Parses one face corner "v", "v/t", "v//n" or "v/t/n"; returns the 0-based vertex index. A
 /// texture or normal index outside those defined is only noted: they are not used.
 std::uint32_t face_corner(const std::string& token, long vertices, long texcoords, long normals,
-                          const std::string& file, int line, Notes& notes) {
+                          const std::string& file, int line, Notes& notes, long& texcoord) {
+    texcoord = -1;
     const long counts[3] = {vertices, texcoords, normals};
     const char* what[3] = {"vertex", "texture coordinate", "normal"};
     std::uint32_t result = 0;
@@ -357,7 +409,10 @@ std::uint32_t face_corner(const std::string& token, long vertices, long texcoord
                                      std::to_string(counts[part]) + " defined so far)";
             if (part == 0) throw InputError(file, line, text);
             notes.add(std::string("index ") + what[part], where(file, line),
-                      text + ": ignored (texture coordinates and normals are not used)");
+                      text + ": ignored (normals are not used; a face without texture "
+                             "coordinates has none)");
+        } else if (part == 1) {
+            texcoord = resolved - 1;
         }
         if (part == 0) result = std::uint32_t(resolved - 1);
         if (slash == token.size()) break;
@@ -430,7 +485,8 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
 
     Notes notes;
     std::vector<dvec3> vertices;
-    long texcoords = 0, normals = 0;
+    std::vector<glm::dvec2> texcoords; // (u, 1 - v): texture.h's convention, t down
+    long normals = 0;
     std::vector<Face> faces;
     std::vector<std::string> usemtl_names;  // as written, in order of first use
     std::vector<std::string> usemtl_places; // file:line of the first usemtl of each
@@ -466,7 +522,15 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
             }
             vertices.push_back(p); // a 4th value (w) or vertex colours are not used
         } else if (key == "vt") {
-            ++texcoords;
+            glm::dvec2 t(0.0);
+            for (std::size_t k = 0; k < 2 && k + 1 < w.size(); ++k) {
+                if (!parse_double(w[k + 1], t[int(k)]) || !std::isfinite(t[int(k)]))
+                    throw InputError(path, line,
+                                     "texture coordinate '" + quoted_excerpt(w[k + 1]) +
+                                         "' is not a finite number");
+            }
+            if (w.size() < 2) throw InputError(path, line, "vt needs at least 1 value");
+            texcoords.emplace_back(t.x, 1.0 - t.y);
         } else if (key == "vn") {
             ++normals;
         } else if (key == "f" || key == "fo") {
@@ -482,9 +546,12 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
             f.line = line;
             f.material = material;
             f.group_name = group;
-            for (std::size_t k = 1; k < w.size(); ++k)
-                f.v.push_back(face_corner(w[k], long(vertices.size()), texcoords, normals, path,
-                                          line, notes));
+            for (std::size_t k = 1; k < w.size(); ++k) {
+                long t = -1;
+                f.v.push_back(face_corner(w[k], long(vertices.size()), long(texcoords.size()),
+                                          normals, path, line, notes, t));
+                f.t.push_back(t);
+            }
             faces.push_back(std::move(f));
         } else if (key == "g" || key == "o") {
             const std::string name = name_of(w);
@@ -543,6 +610,30 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
     scene.source = path;
     // Materials: every MTL material in the order read; 'default' last, only if a face uses it.
     for (const MtlMaterial& m : mtl) scene.materials.push_back(m.m);
+    // Textures: each file once; a missing or undecodable one leaves its material with Kd.
+    {
+        std::map<std::string, int> texture_index;
+        for (std::size_t i = 0; i < mtl.size(); ++i) {
+            const MtlMaterial& mm = mtl[i];
+            if (mm.map_kd.empty()) continue;
+            Material& m = scene.materials[i];
+            if (!mm.has_kd) m.rho = dvec3(options.max_reflectance); // Kd 1, as clamped
+            auto it = texture_index.find(mm.map_kd);
+            if (it == texture_index.end()) {
+                int index = -1;
+                try {
+                    scene.textures.push_back(load_texture(mm.map_kd));
+                    index = int(scene.textures.size()) - 1;
+                } catch (const InputError& e) {
+                    notes.add("mtl map_Kd " + mm.map_kd, mm.map_kd_place,
+                              std::string("texture not read (") + e.what() +
+                                  "): its materials use their Kd alone");
+                }
+                it = texture_index.emplace(mm.map_kd, index).first;
+            }
+            m.texture = it->second;
+        }
+    }
     std::vector<int> material_of_usemtl(usemtl_names.size(), -1);
     for (std::size_t i = 0; i < usemtl_names.size(); ++i) {
         const auto it = mtl_by_name.find(usemtl_names[i]);
@@ -624,11 +715,16 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
     long degenerate = 0, split_quads = 0, fans = 0;
     std::string first_degenerate, first_split, first_fan;
     std::vector<dvec3> corners;
+    std::vector<glm::dvec2> corner_uv;
+    std::map<std::uint32_t, std::uint32_t> untextured_variant; // textured material -> its mean
     for (std::size_t i = 0; i < faces.size(); ++i) {
         if (dropped[i]) continue;
         const Face& f = faces[i];
         corners.clear();
         for (std::uint32_t v : f.v) corners.push_back(vertices[v]);
+        corner_uv.clear();
+        if (std::all_of(f.t.begin(), f.t.end(), [](long t) { return t >= 0; }))
+            for (long t : f.t) corner_uv.push_back(texcoords[std::size_t(t)]);
         const std::string place = where(path, f.line);
 
         std::uint32_t m;
@@ -651,7 +747,25 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
         }
         const std::string& gname = group_names[f.group_name];
         const std::uint32_t g = group_of(!gname.empty() ? gname : material_name);
-        const AddResult r = add_polygon(scene, corners, m, g);
+        const bool textured = scene.materials[m].texture >= 0;
+        if (textured && corner_uv.empty()) {
+            // No texture coordinates: a copy of the material with Kd times the texture's mean.
+            auto [it, fresh] = untextured_variant.try_emplace(m, 0);
+            if (fresh) {
+                Material copy = scene.materials[m];
+                copy.rho *= scene.textures[std::size_t(copy.texture)].mean();
+                copy.texture = -1;
+                copy.name += " (texture mean)";
+                it->second = std::uint32_t(scene.materials.size());
+                scene.materials.push_back(copy);
+            }
+            notes.add("face no vt", place,
+                      "faces of textured material '" + material_name +
+                          "' without texture coordinates: Kd times the texture's mean");
+            m = it->second;
+        }
+        const AddResult r = add_polygon(scene, corners, m, g, 1e-6,
+                                        textured && !corner_uv.empty() ? &corner_uv : nullptr);
         if (r.degenerate && degenerate++ == 0) first_degenerate = place;
         if (r.split && corners.size() == 4 && split_quads++ == 0)
             first_split = place + ": face of group '" + scene.groups[g] +
@@ -688,6 +802,7 @@ Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin,
                          std::string("no such file, and not a built-in scene (") + builtin_names() +
                              ")");
     if (is_scene_json(name_or_path)) return load_scene_json(name_or_path, obj);
+    if (is_gltf(name_or_path)) return load_gltf(name_or_path, obj);
     return load_obj(name_or_path, obj);
 }
 

@@ -32,8 +32,29 @@ dvec3 newell(const std::vector<dvec3>& c) {
     return n;
 }
 
-bool add_triangle(Scene& s, const dvec3& a, const dvec3& b, const dvec3& c, std::uint32_t material,
-                  std::uint32_t group) {
+/// Keeps Scene::texcoords parallel to the polygons once any polygon has coordinates: the
+/// polygon just added gets `uv` (or zeros).
+void push_texcoords(Scene& s, const TexCoords* uv) {
+    if (!uv && s.texcoords.empty()) return;
+    s.texcoords.resize(s.polygons.size() - 1, TexCoords{});
+    s.texcoords.push_back(uv ? *uv : TexCoords{});
+}
+
+/// Corner texture coordinates for corners i, j, k (, l) of `uv`, or null without.
+struct CornerUV {
+    const std::vector<glm::dvec2>* uv;
+    bool have() const { return uv != nullptr; }
+    TexCoords pick(std::initializer_list<std::size_t> idx) const {
+        TexCoords t{};
+        int n = 0;
+        for (std::size_t i : idx) t[std::size_t(n++)] = glm::vec2((*uv)[i]);
+        return t;
+    }
+};
+
+bool add_triangle(Scene& s, const std::vector<dvec3>& v, std::size_t i, std::size_t j,
+                  std::size_t k, std::uint32_t material, std::uint32_t group, CornerUV uv) {
+    const dvec3 &a = v[i], &b = v[j], &c = v[k];
     const dvec3 n = glm::cross(b - a, c - a);
     const double len = glm::length(n);
     const double scale = std::max({glm::length(b - a), glm::length(c - a), glm::length(c - b)});
@@ -46,14 +67,18 @@ bool add_triangle(Scene& s, const dvec3& a, const dvec3& b, const dvec3& c, std:
     p.material = material;
     p.group = group;
     s.polygons.push_back(p);
+    const TexCoords t = uv.have() ? uv.pick({i, j, k}) : TexCoords{};
+    push_texcoords(s, uv.have() ? &t : nullptr);
     return true;
 }
 
 } // namespace
 
 AddResult add_polygon(Scene& s, const std::vector<dvec3>& corners, std::uint32_t material,
-                      std::uint32_t group, double planarity_tolerance) {
+                      std::uint32_t group, double planarity_tolerance,
+                      const std::vector<glm::dvec2>* corner_uv) {
     AddResult r;
+    HEMIRAD_CHECK(!corner_uv || corner_uv->size() == corners.size());
     for (const dvec3& c : corners)
         for (int k = 0; k < 3; ++k)
             if (!std::isfinite(c[k])) {
@@ -61,14 +86,22 @@ AddResult add_polygon(Scene& s, const std::vector<dvec3>& corners, std::uint32_t
                 m << "non-finite vertex coordinate (" << c.x << ", " << c.y << ", " << c.z << ")";
                 throw InputError(m.str());
             }
-    // Drop repeated consecutive corners.
+    // Drop repeated consecutive corners (their texture coordinates with them).
     std::vector<dvec3> v;
-    for (const dvec3& c : corners)
-        if (v.empty() || glm::length(c - v.back()) > 0) v.push_back(c);
-    while (v.size() > 1 && glm::length(v.front() - v.back()) == 0) v.pop_back();
+    std::vector<glm::dvec2> uvs;
+    for (std::size_t i = 0; i < corners.size(); ++i)
+        if (v.empty() || glm::length(corners[i] - v.back()) > 0) {
+            v.push_back(corners[i]);
+            if (corner_uv) uvs.push_back((*corner_uv)[i]);
+        }
+    while (v.size() > 1 && glm::length(v.front() - v.back()) == 0) {
+        v.pop_back();
+        if (corner_uv) uvs.pop_back();
+    }
+    const CornerUV uv{corner_uv ? &uvs : nullptr};
     if (v.size() < 3) { r.degenerate = true; return r; }
     if (v.size() == 3) {
-        r.added = add_triangle(s, v[0], v[1], v[2], material, group) ? 1 : 0;
+        r.added = add_triangle(s, v, 0, 1, 2, material, group, uv) ? 1 : 0;
         r.degenerate = r.added == 0;
         return r;
     }
@@ -76,7 +109,7 @@ AddResult add_polygon(Scene& s, const std::vector<dvec3>& corners, std::uint32_t
         // Larger polygons: fan triangulation (convex polygons are expected).
         r.split = true;
         for (std::size_t i = 1; i + 1 < v.size(); ++i)
-            r.added += add_triangle(s, v[0], v[i], v[i + 1], material, group) ? 1 : 0;
+            r.added += add_triangle(s, v, 0, i, i + 1, material, group, uv) ? 1 : 0;
         r.degenerate = r.added == 0;
         return r;
     }
@@ -101,11 +134,11 @@ AddResult add_polygon(Scene& s, const std::vector<dvec3>& corners, std::uint32_t
         r.split = true;
         // Split along the shorter diagonal, the better-shaped pair of triangles.
         if (glm::length(v[2] - v[0]) <= glm::length(v[3] - v[1])) {
-            r.added += add_triangle(s, v[0], v[1], v[2], material, group);
-            r.added += add_triangle(s, v[0], v[2], v[3], material, group);
+            r.added += add_triangle(s, v, 0, 1, 2, material, group, uv);
+            r.added += add_triangle(s, v, 0, 2, 3, material, group, uv);
         } else {
-            r.added += add_triangle(s, v[0], v[1], v[3], material, group);
-            r.added += add_triangle(s, v[1], v[2], v[3], material, group);
+            r.added += add_triangle(s, v, 0, 1, 3, material, group, uv);
+            r.added += add_triangle(s, v, 1, 2, 3, material, group, uv);
         }
         r.degenerate = r.added == 0;
         return r;
@@ -118,6 +151,8 @@ AddResult add_polygon(Scene& s, const std::vector<dvec3>& corners, std::uint32_t
     p.material = material;
     p.group = group;
     s.polygons.push_back(p);
+    const TexCoords t = uv.have() ? uv.pick({0, 1, 2, 3}) : TexCoords{};
+    push_texcoords(s, uv.have() ? &t : nullptr);
     r.added = 1;
     return r;
 }
@@ -157,10 +192,16 @@ double Scene::total_area() const {
     return a;
 }
 
+const Texture* Scene::texture_of(std::uint32_t polygon) const {
+    const int t = materials[polygons[polygon].material].texture;
+    return t >= 0 && !texcoords.empty() ? &textures[std::size_t(t)] : nullptr;
+}
+
 double Scene::max_reflectance() const {
     double m = 0;
-    for (const Polygon& q : polygons) {
-        const dvec3& r = materials[q.material].rho;
+    for (std::uint32_t i = 0; i < polygons.size(); ++i) {
+        dvec3 r = materials[polygons[i].material].rho;
+        if (const Texture* t = texture_of(i)) r *= dvec3(t->max);
         m = std::max({m, r.x, r.y, r.z});
     }
     return m;
@@ -202,6 +243,17 @@ std::uint64_t Scene::content_hash() const {
     for (const Material& m : materials) {
         mix(&m.rho, sizeof m.rho);
         mix(&m.Ke, sizeof m.Ke);
+    }
+    // Textures change the solution (none: the hash of an untextured scene is what it was).
+    if (!textures.empty() && !texcoords.empty()) {
+        for (const Material& m : materials) mix(&m.texture, sizeof m.texture);
+        mix(texcoords.data(), texcoords.size() * sizeof(TexCoords));
+        for (const Texture& t : textures) {
+            const Texture::Level& l = t.levels[0];
+            mix(&l.width, sizeof l.width);
+            mix(&l.height, sizeof l.height);
+            mix(l.texels.data(), l.texels.size() * sizeof(glm::vec3));
+        }
     }
     // Luminaires change the solution: their placement and distribution count (none: the hash
     // of a scene without luminaires is what it always was).

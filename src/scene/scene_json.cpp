@@ -199,7 +199,19 @@ std::string lower_extension(const std::string& path) {
 // Appends `part` to `out`: materials after out's, groups merged by name.
 void merge(Scene& out, const Scene& part) {
     const auto offset = std::uint32_t(out.materials.size());
+    const int texture_offset = int(out.textures.size());
     out.materials.insert(out.materials.end(), part.materials.begin(), part.materials.end());
+    for (std::size_t m = offset; m < out.materials.size(); ++m)
+        if (out.materials[m].texture >= 0) out.materials[m].texture += texture_offset;
+    out.textures.insert(out.textures.end(), part.textures.begin(), part.textures.end());
+    // Texture coordinates stay parallel to the polygons once either side has them.
+    if (!part.texcoords.empty() || !out.texcoords.empty()) {
+        out.texcoords.resize(out.polygons.size(), TexCoords{});
+        if (part.texcoords.empty())
+            out.texcoords.resize(out.polygons.size() + part.polygons.size(), TexCoords{});
+        else
+            out.texcoords.insert(out.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
+    }
     std::vector<std::uint32_t> group(part.groups.size());
     for (std::size_t g = 0; g < part.groups.size(); ++g) {
         const int found = out.find_group(part.groups[g]);
@@ -343,7 +355,7 @@ Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
         if (ext != ".obj") r.fail(at, "'" + file + "': expected an OBJ file (.obj)");
         const std::string resolved = r.resolve(file);
         if (!fs::exists(resolved)) r.fail(at, "'" + file + "': no such file (" + resolved + ")");
-        merge(scene, load_obj(resolved, obj));
+        merge(scene, is_gltf(resolved) ? load_gltf(resolved, obj) : load_obj(resolved, obj));
     }
     if (doc.contains("luminaires")) {
         const json& ls = doc["luminaires"];

@@ -130,7 +130,7 @@ dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_
     Hit hit;
     if (!bvh_->intersect(origin, dir, 1e300, hit, self) || !hit.front) return dvec3(0.0);
     const Polygon& q = scene.polygons[hit.polygon];
-    const dvec3& rho = scene.material_of(q).rho;
+    const dvec3 rho = reflectance_at(scene, hit.polygon, hit.u, hit.v); // the texel there
     if (!(rho.x > 0 || rho.y > 0 || rho.z > 0)) return dvec3(0.0);
     if (near_path && hit.t * glm::length(dir) < kNearLeaves * leaf_size_[hit.polygon]) {
         // Near the point a leaf's value is too coarse (a contact shadow, a corner): estimate

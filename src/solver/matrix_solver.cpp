@@ -41,7 +41,8 @@ MatrixSolution solve_matrix(const Scene& scene, const Discretisation& disc,
     for (std::size_t j = 0; j < n; ++j) {
         const Material& m = scene.material_of(scene.polygons[s.leaves[j].polygon]);
         E[j] = m.exitance();
-        rho[j] = m.rho;
+        rho[j] = patch_reflectance(scene, s.leaves[j].polygon, s.leaves[j].level,
+                                   s.leaves[j].index); // rho, times the texture's leaf mean
     }
     s.B = E;
     s.H.assign(n, dvec3(0.0));

@@ -305,7 +305,7 @@ void Solver::deliver(const dvec3& dB, double area_s, ShotRecord& rec) {
     for (const Link& l : links_) {
         const dvec3 irradiance = double(l.ff) * scale * dB;
         const double a = double(hierarchy_.node(l.receiver).area);
-        const dvec3& rho = scene_->material_of(scene_->polygons[l.receiver.polygon]).rho;
+        const dvec3 rho = hierarchy_.reflectance(l.receiver); // per leaf where textured
         hierarchy_.receive(l.receiver, irradiance);
         received += irradiance * a;
         absorbed_ += (dvec3(1.0) - rho) * irradiance * a;
@@ -356,9 +356,10 @@ Hierarchy& Solver::solution() {
 dvec3 Solver::ambient_irradiance() const {
     double area = 0;
     dvec3 rho_area(0.0);
-    for (const Polygon& p : scene_->polygons) {
+    for (std::uint32_t i = 0; i < scene_->polygons.size(); ++i) {
+        const Polygon& p = scene_->polygons[i];
         area += p.area;
-        rho_area += scene_->material_of(p).rho * p.area;
+        rho_area += hierarchy_.reflectance({i, 0, 0}) * p.area; // the texture's mean where textured
     }
     if (area <= 0) return dvec3(0.0);
     const dvec3 rho_avg = rho_area / area;

@@ -22,7 +22,7 @@ int cmd_formfactors(int argc, char** argv) {
                    "Shoots from every leaf patch of every polygon of GROUP and reports the form\n"
                    "factor from GROUP to every group, F(GROUP -> G) = sum over shooters of\n"
                    "A_s F(s -> G) / A_GROUP, and the row sum (1 in a closed scene).");
-    args.positional("SCENE", &scene_name, "OBJ file, SCENE.json or built-in scene");
+    args.positional("SCENE", &scene_name, "OBJ or glTF file, SCENE.json or built-in scene");
     args.option("--from", &from, "GROUP", "the shooting surface group");
     args.option("--ff", &ff, "METHOD", "hybrid, analytic, hemicube, reference, pdm, sr");
     args.option("--max-depth", &ho.max_depth, "D", "receiver and shooter quadtree depth (0..11)");

@@ -30,7 +30,8 @@ int cmd_reference(int argc, char** argv) {
         "errors of the means: x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group,sem_r,sem_g,sem_b.");
     args.positional(
         "SCENE", &scene_name,
-        std::string("OBJ file, SCENE.json (OBJ files, luminaires, cameras) or built-in scene (") +
+        std::string("OBJ or glTF (.gltf, .glb) file, SCENE.json (OBJ or glTF files, luminaires, "
+                    "cameras) or built-in scene (") +
             builtin_names() + ")");
     args.option("--probes", &probes_in, "IN.csv", "points x,y,z,nx,ny,nz to evaluate (required)");
     args.option("--probe-out", &probes_out, "OUT.csv",

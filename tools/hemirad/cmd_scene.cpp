@@ -26,7 +26,8 @@ int cmd_scene(int argc, char** argv) {
                    "Loads a scene and prints what it holds; writes it as OBJ/MTL with --obj.");
     args.positional(
         "SCENE", &name,
-        std::string("OBJ file, SCENE.json (OBJ files, luminaires, cameras) or built-in scene (") +
+        std::string("OBJ or glTF (.gltf, .glb) file, SCENE.json (OBJ or glTF files, luminaires, "
+                    "cameras) or built-in scene (") +
             builtin_names() + ")");
     args.flag("--json", &json, "print JSON instead of text");
     args.option("--obj", &obj_out, "FILE.obj",

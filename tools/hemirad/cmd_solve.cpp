@@ -88,7 +88,8 @@ int cmd_solve(int argc, char** argv) {
                    "rank 0 prints and writes (docs/scaling.md).");
     args.positional(
         "SCENE", &scene_name,
-        std::string("OBJ file, SCENE.json (OBJ files, luminaires, cameras) or built-in scene (") +
+        std::string("OBJ or glTF (.gltf, .glb) file, SCENE.json (OBJ or glTF files, luminaires, "
+                    "cameras) or built-in scene (") +
             builtin_names() + ")");
     add_solver_options(args, so);
     args.section("output");

@@ -226,7 +226,8 @@ int run(int argc, char** argv) {
                    "DIR/contact_sheet.png, DIR/convergence.png and DIR/convergence.csv.");
     args.positional(
         "SCENE", &o.scene,
-        std::string("OBJ file, SCENE.json (OBJ files, luminaires, cameras) or built-in scene (") +
+        std::string("OBJ or glTF (.gltf, .glb) file, SCENE.json (OBJ or glTF files, luminaires, "
+                    "cameras) or built-in scene (") +
             builtin_names() + ")");
     args.section("frames");
     args.option("--out", &o.out, "DIR", "output directory (created if missing)");

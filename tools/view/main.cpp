@@ -311,7 +311,8 @@ int run(int argc, char** argv) {
                    "With --screenshot, --after-shots or --frames it saves a frame and exits.");
     args.positional(
         "SCENE", &o.scene,
-        std::string("OBJ file, SCENE.json (OBJ files, luminaires, cameras) or built-in scene (") +
+        std::string("OBJ or glTF (.gltf, .glb) file, SCENE.json (OBJ or glTF files, luminaires, "
+                    "cameras) or built-in scene (") +
             builtin_names() + ")");
     args.section("window");
     args.option("--width", &o.width, "W", "window width [pixels]");

@@ -1,0 +1,156 @@
+// glTF 2.0 input (scene_io.h, load_gltf): node transforms composed down the tree against
+// hand-computed positions, .gltf and .glb of one scene load alike, materials (reflectance,
+// emissive strength), cameras, groups; bad files give errors naming the file and the element.
+// The files are written by tests/data/gltf/make_gltf.py.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "hemirad/error.h"
+#include "hemirad/scene_io.h"
+
+using namespace hemirad;
+
+namespace {
+
+std::string data(const std::string& name) {
+    return std::string(HEMIRAD_TEST_DATA) + "/gltf/" + name;
+}
+
+void expect_near(const dvec3& a, const dvec3& b, const char* what) {
+    EXPECT_LT(glm::length(a - b), 1e-6) << what << ": (" << a.x << ", " << a.y << ", " << a.z
+                                        << ") vs (" << b.x << ", " << b.y << ", " << b.z << ")";
+}
+
+std::string error_of(const std::string& file) {
+    try {
+        load_gltf(data(file));
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+bool has_warning(const Scene& s, const std::string& part) {
+    for (const std::string& w : s.warnings)
+        if (w.find(part) != std::string::npos) return true;
+    return false;
+}
+
+} // namespace
+
+TEST(Gltf, NodeTransformsComposeFromTheRootDown) {
+    const Scene s = load_gltf(data("nodes.gltf"));
+    // Three primitives (indices u8, u16, u32) of one triangle under root (T 1,2,3) > turned
+    // (R z 90 degrees, S 2) > leaf (matrix: T 0,0,1); then three untransformed under "plain".
+    ASSERT_EQ(s.polygons.size(), 6u);
+    // p -> p + (0,0,1) -> 2p -> (x,y,z) to (-y,x,z) -> + (1,2,3):
+    // (0,0,0) -> (1,2,5); (1,0,0) -> (1,4,5); (0,1,0) -> (-1,2,5).
+    for (int k = 0; k < 3; ++k) {
+        const Polygon& p = s.polygons[std::size_t(k)];
+        ASSERT_EQ(p.count, 3);
+        expect_near(p.v[0], {1, 2, 5}, "corner 0");
+        expect_near(p.v[1], {1, 4, 5}, "corner 1");
+        expect_near(p.v[2], {-1, 2, 5}, "corner 2");
+        expect_near(p.normal, {0, 0, 1}, "normal");
+        EXPECT_NEAR(p.area, 2.0, 1e-9); // scaled by 2: area 0.5 * 4
+        EXPECT_EQ(s.groups[p.group], "leaf");
+    }
+    for (int k = 3; k < 6; ++k) {
+        const Polygon& p = s.polygons[std::size_t(k)];
+        expect_near(p.v[1], {1, 0, 0}, "untransformed corner");
+        EXPECT_EQ(s.groups[p.group], "plain");
+    }
+}
+
+TEST(Gltf, GltfAndGlbOfTheSameSceneLoadIdentically) {
+    const Scene a = load_gltf(data("nodes.gltf"));
+    const Scene b = load_gltf(data("nodes.glb"));
+    EXPECT_EQ(a.content_hash(), b.content_hash());
+    ASSERT_EQ(a.cameras.size(), b.cameras.size());
+    EXPECT_EQ(a.groups, b.groups);
+    // And through the one dispatch by extension.
+    EXPECT_EQ(load_scene(data("nodes.glb")).content_hash(), a.content_hash());
+}
+
+TEST(Gltf, MaterialsReflectanceAndEmissiveStrength) {
+    const Scene s = load_gltf(data("nodes.gltf"));
+    const Material& grey = s.material_of(s.polygons[0]);
+    EXPECT_EQ(grey.name, "grey");
+    EXPECT_EQ(grey.rho, dvec3(0.5, 0.25, 0.125));
+    EXPECT_EQ(grey.Ke, dvec3(0.0));
+    const Material& glow = s.material_of(s.polygons[2]);
+    EXPECT_EQ(glow.name, "glow");
+    // emissiveFactor (0.5, 1, 0) x emissiveStrength 4: radiance; exitance pi times it.
+    expect_near(glow.Ke, {2, 4, 0}, "Ke");
+    EXPECT_NEAR(s.surface_power().y, std::acos(-1.0) * 4 * (2.0 + 0.5), 1e-9)
+        << "two glowing triangles: areas 2 and 0.5";
+}
+
+TEST(Gltf, CamerasInTreeOrderTheFirstIsTheDefault) {
+    const Scene s = load_gltf(data("nodes.gltf"));
+    ASSERT_EQ(s.cameras.size(), 2u);
+    const Camera& c = s.cameras[0];
+    EXPECT_EQ(c.name, "first");
+    // Under root > turned > leaf: eye at (1,2,3) + R S (0,0,1) = (1,2,5), looking down -z,
+    // up = R (0,1,0) = (-1,0,0).
+    expect_near(c.eye, {1, 2, 5}, "eye");
+    expect_near(glm::normalize(c.target - c.eye), {0, 0, -1}, "view direction");
+    expect_near(c.up, {-1, 0, 0}, "up");
+    EXPECT_NEAR(c.fov_y_deg, 0.8 * 180 / std::acos(-1.0), 1e-9);
+    expect_near(s.cameras[1].eye, {0, 0, 5}, "second eye");
+}
+
+TEST(Gltf, BadFilesAreErrorsNamingFileAndElement) {
+    struct Case {
+        const char* file;
+        std::vector<std::string> parts;
+    };
+    const std::vector<Case> cases = {
+        {"bad_accessor.gltf", {"bad_accessor.gltf", "accessor 0", "reaches outside buffer view 0"}},
+        {"bad_index.gltf", {"bad_index.gltf", "mesh 0 primitive 0", "index 7", "accessor 1"}},
+        {"cycle.gltf", {"cycle.gltf", "node 0 is its own ancestor"}},
+        {"bad_mesh.gltf", {"bad_mesh.gltf", "node 4", "mesh 9", "does not exist"}},
+        {"not_json.gltf", {"not_json.gltf", "cannot read the glTF file"}},
+        {"missing_bin.gltf", {"missing_bin.gltf", "cannot read the glTF file", "missing.bin"}},
+        {"no_such_file.glb", {"no_such_file.glb", "no such file"}},
+    };
+    for (const Case& c : cases) {
+        const std::string e = error_of(c.file);
+        for (const std::string& part : c.parts)
+            EXPECT_NE(e.find(part), std::string::npos)
+                << c.file << ": '" << part << "' not in: " << e;
+    }
+}
+
+TEST(Gltf, UnsupportedModesAndMissingImagesAreWarnings) {
+    const Scene lines = load_gltf(data("lines.gltf"));
+    EXPECT_EQ(lines.polygons.size(), 4u) << "the lines primitive skipped (in both instances)";
+    EXPECT_TRUE(has_warning(lines, "mesh 0 primitive 0: mode 1"));
+    EXPECT_FALSE(has_warning(lines, "extensions not read")) << "emissive strength is read";
+    EXPECT_TRUE(has_warning(load_gltf(data("lights.gltf")),
+                            "lights.gltf: extensions not read: KHR_lights_punctual"));
+    const Scene img = load_gltf(data("missing_image.gltf"));
+    ASSERT_EQ(img.polygons.size(), 2u);
+    EXPECT_EQ(img.materials.at(0).texture, -1);
+    EXPECT_EQ(img.materials.at(0).rho, dvec3(0.5));
+    EXPECT_EQ(img.materials.at(0).Ke, dvec3(1.0)) << "no extension: strength 1";
+    EXPECT_TRUE(has_warning(img, "could not be read: its materials use baseColorFactor alone"));
+}
+
+TEST(Gltf, AssetRoomLoadsWithTextureCameraAndLight) {
+    const Scene s = load_scene(std::string(HEMIRAD_SOURCE_DIR) + "/assets/gltf_room.gltf");
+    ASSERT_EQ(s.textures.size(), 1u);
+    EXPECT_EQ(s.textures[0].width(), 64);
+    ASSERT_FALSE(s.cameras.empty());
+    EXPECT_EQ(s.cameras[0].name, "door");
+    expect_near(s.cameras[0].eye, {2.5, 2.2, 0.2}, "camera eye");
+    // The 1 m^2 panel: exitance 1000 W/m^2 (emissiveStrength 1000/pi).
+    EXPECT_NEAR(s.surface_power().x, 1000.0, 1e-6);
+    // The root node scales the room by 0.5: 5 x 3 x 4 m.
+    const Bounds b = s.bounds();
+    expect_near(b.hi - b.lo, {5, 3, 4}, "room size");
+    EXPECT_GE(s.find_group("block_a"), 0);
+    EXPECT_GE(s.find_group("floor"), 0);
+}
