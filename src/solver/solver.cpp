@@ -3,6 +3,7 @@
 #include "hemirad/solver.h"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 
 #include "hemirad/error.h"
@@ -247,6 +248,13 @@ PatchAddress Solver::shoot_patch(std::uint32_t polygon, ShotRecord& rec, dvec3& 
         t0 = Clock::now();
         provider_->shoot(shooter, links_);
         rec.t_form_factors += since(t0);
+        // Every hemicube of the shot counts, those of nodes whose children shoot instead too.
+        for (const FormFactorProvider::Timing& t : provider_->last_timings()) {
+            auto it = std::find_if(rec.ff_phases.begin(), rec.ff_phases.end(),
+                                   [&](const auto& p) { return !std::strcmp(p.phase, t.phase); });
+            if (it == rec.ff_phases.end()) rec.ff_phases.push_back(t);
+            else it->seconds += t.seconds;
+        }
         // An enclosed centre would lose the patch's power, and a centre beside a near
         // occluder would misplace it (parallax): shoot the children instead.
         rec.parallax = -1;
@@ -268,7 +276,6 @@ PatchAddress Solver::shoot_patch(std::uint32_t polygon, ShotRecord& rec, dvec3& 
     }
     rec.shooter = sa;
     rec.shooter_power = shooter.unshot_power;
-    rec.ff_phases = provider_->last_timings();
     rec.links = links_.size();
     return sa;
 }

@@ -134,7 +134,7 @@ bool Solver::step_round() {
             h.refined = mine.refined;
             h.parallax = mine.parallax;
         }
-        mine.ff_phases = provider_->last_timings();
+        if (h.kind != 1) mine.ff_phases = provider_->last_timings(); // shoot_patch sums its own
     }
     h.shooter_power = mine.shooter_power;
     h.t_select = mine.t_select;
