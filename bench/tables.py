@@ -30,17 +30,20 @@ def main(path):
             print(f"| `{name}` | {e['leaf_patches']:,} | {e['shots']} | {e['seconds']:.2f} | "
                   f"{e['error_bound']:.3g} | {e.get('stop', '')} |")
     print()
-    print("Per shot, ms (means): select, push-pull, render (rasterise + analytic shader), "
+    print("Per shot, ms (means, every hemicube of a shot: those of nodes whose children shoot "
+          "instead too): select, push-pull, cull (CPU), render (rasterise + analytic shader), "
           "readback, reduce, update; peak memory of the experiment's process.")
     print()
-    print("| experiment | polygons | leaf patches | ms/shot | select | push-pull | render | readback | reduce | update | peak MiB |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| experiment | polygons | leaf patches | ms/shot | select | push-pull | cull | render | readback | reduce | update | peak MiB |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for e in b["experiments"]:
+        if "breakdown" not in e:  # accuracy, soak and mpi_scaling print their own figures
+            continue
         bd, n = e["breakdown"], max(e["shots"], 1)
         ms = lambda k: 1000 * bd.get(k, 0) / n
         print(f"| `{e['name']}` | {e['polygons']} | {e['leaf_patches']:,} | "
               f"{1000 * e['seconds_per_shot']:.1f} | {ms('select'):.2f} | {ms('push_pull'):.2f} | "
-              f"{ms('ff_render'):.1f} | {ms('ff_readback'):.2f} | {ms('ff_reduce'):.2f} | "
+              f"{ms('ff_cull'):.2f} | {ms('ff_render'):.1f} | {ms('ff_readback'):.2f} | {ms('ff_reduce'):.2f} | "
               f"{ms('update'):.2f} | {e.get('peak_rss_mib', 0):.0f} |")
     print()
     print(f"`shot_overhead_ratio` (whole shot ÷ bare hemicube render + readback at the same "
