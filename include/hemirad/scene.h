@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -108,6 +109,13 @@ struct AddResult {
 AddResult add_polygon(Scene& scene, const std::vector<dvec3>& corners, std::uint32_t material,
                       std::uint32_t group, double planarity_tolerance = 1e-6,
                       const std::vector<glm::dvec2>* uv = nullptr);
+
+/// For faces of a textured material that carry no texture coordinates: the index of a copy of
+/// `material` with its reflectance times the texture's mean and no texture (named "NAME
+/// (texture mean)"), appended to scene.materials the first time; `cache` remembers the copies
+/// made (textured material -> its copy).
+std::uint32_t untextured_material(Scene& scene, std::uint32_t material,
+                                  std::map<std::uint32_t, std::uint32_t>& cache);
 
 /// The warning finish_scene() adds when nothing emits (its start, for filtering).
 inline constexpr const char* kNoEmitterWarning = "no surface emits light";

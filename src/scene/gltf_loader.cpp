@@ -440,7 +440,7 @@ class GltfReader {
                     warn_once("no texcoord " + pname,
                               pname + " has a textured material but no TEXCOORD_0: it uses "
                                       "baseColorFactor times the texture's mean");
-                    mat = untextured_variant(scene, mat);
+                    mat = untextured_material(scene, mat, variants_);
                     textured = false;
                 }
             }
@@ -502,20 +502,6 @@ class GltfReader {
                                     std::to_string(degenerate) +
                                     " degenerate triangle(s) (zero area or repeated vertices)");
         }
-    }
-
-    /// A copy of textured material `mat` with rho times its texture's mean, untextured.
-    std::uint32_t untextured_variant(Scene& scene, std::uint32_t mat) {
-        const auto [it, fresh] = variants_.try_emplace(mat, 0);
-        if (fresh) {
-            Material copy = scene.materials[mat];
-            copy.rho *= scene.textures[std::size_t(copy.texture)].mean();
-            copy.texture = -1;
-            copy.name += " (texture mean)";
-            it->second = std::uint32_t(scene.materials.size());
-            scene.materials.push_back(copy);
-        }
-        return it->second;
     }
 
     std::uint32_t group_of(Scene& scene, const std::string& name) {

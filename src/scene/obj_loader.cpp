@@ -750,19 +750,10 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
         const bool textured = scene.materials[m].texture >= 0;
         if (textured && corner_uv.empty()) {
             // No texture coordinates: a copy of the material with Kd times the texture's mean.
-            auto [it, fresh] = untextured_variant.try_emplace(m, 0);
-            if (fresh) {
-                Material copy = scene.materials[m];
-                copy.rho *= scene.textures[std::size_t(copy.texture)].mean();
-                copy.texture = -1;
-                copy.name += " (texture mean)";
-                it->second = std::uint32_t(scene.materials.size());
-                scene.materials.push_back(copy);
-            }
             notes.add("face no vt", place,
                       "faces of textured material '" + material_name +
                           "' without texture coordinates: Kd times the texture's mean");
-            m = it->second;
+            m = untextured_material(scene, m, untextured_variant);
         }
         const AddResult r = add_polygon(scene, corners, m, g, 1e-6,
                                         textured && !corner_uv.empty() ? &corner_uv : nullptr);

@@ -157,6 +157,20 @@ AddResult add_polygon(Scene& s, const std::vector<dvec3>& corners, std::uint32_t
     return r;
 }
 
+std::uint32_t untextured_material(Scene& scene, std::uint32_t material,
+                                  std::map<std::uint32_t, std::uint32_t>& cache) {
+    const auto [it, fresh] = cache.try_emplace(material, 0);
+    if (fresh) {
+        Material copy = scene.materials[material];
+        copy.rho *= scene.textures[std::size_t(copy.texture)].mean();
+        copy.texture = -1;
+        copy.name += " (texture mean)";
+        it->second = std::uint32_t(scene.materials.size());
+        scene.materials.push_back(copy);
+    }
+    return it->second;
+}
+
 void finish_scene(Scene& s, const std::string& origin) {
     if (s.polygons.empty())
         throw InputError(origin, 0, "the scene has no polygons (nothing to solve)");
