@@ -56,6 +56,7 @@ public:
     explicit Reader(const std::vector<std::uint8_t>& b) : b_(b) {}
     template <class T> void get(T* v, std::size_t n) {
         HEMIRAD_CHECK(n <= (b_.size() - at_) / sizeof(T));
+        if (n == 0) return; // v may be null (an empty vector's data()): memcpy must not see it
         std::memcpy(static_cast<void*>(v), b_.data() + at_, n * sizeof(T));
         at_ += n * sizeof(T);
     }
