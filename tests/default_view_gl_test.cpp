@@ -16,29 +16,13 @@
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"
 
+#include "shared_gl_context.h"
+
 using namespace hemirad;
 
 namespace {
 
-class DefaultViewGL : public ::testing::Test {
-  protected:
-    static void SetUpTestSuite() {
-        try {
-            context_ = gl::Context::create();
-        } catch (const std::exception& e) {
-            error_ = e.what();
-        }
-    }
-    static void TearDownTestSuite() { context_.reset(); }
-    void SetUp() override {
-        ASSERT_TRUE(context_) << "no GL context: " << error_;
-        context_->make_current();
-    }
-    static std::unique_ptr<gl::Context> context_;
-    static std::string error_;
-};
-std::unique_ptr<gl::Context> DefaultViewGL::context_;
-std::string DefaultViewGL::error_;
+class DefaultViewGL : public SharedGlContextTest {};
 
 /// Mean luminance of an image and the fraction of its pixels brighter than 1 % of the mean of
 /// the lit surfaces (those above zero): how much of the image shows light.

@@ -28,32 +28,13 @@
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"
 
+#include "shared_gl_context.h"
+
 using namespace hemirad;
 
 namespace {
 
-// One context for the whole file (programs compile once; DESIGN.md: code generation at the
-// first draw costs ~100 ms per program on llvmpipe).
-class RenderGLTest : public ::testing::Test {
-protected:
-    static void SetUpTestSuite() {
-        try {
-            context_ = gl::Context::create();
-        } catch (const std::exception& e) {
-            error_ = e.what();
-        }
-    }
-    static void TearDownTestSuite() { context_.reset(); }
-    void SetUp() override {
-        ASSERT_TRUE(context_) << "no GL context: " << error_;
-        context_->make_current();
-    }
-
-    static std::unique_ptr<gl::Context> context_;
-    static std::string error_;
-};
-std::unique_ptr<gl::Context> RenderGLTest::context_;
-std::string RenderGLTest::error_;
+class RenderGLTest : public SharedGlContextTest {};
 
 /// A scene of quads in the plane z = 0, facing +z, with the given materials.
 Scene plane_scene(const std::vector<Material>& materials) {

@@ -17,29 +17,13 @@
 #include "hemirad/solver.h"
 #include "hemirad/texture.h"
 
+#include "shared_gl_context.h"
+
 using namespace hemirad;
 
 namespace {
 
-class TextureGLTest : public ::testing::Test {
-  protected:
-    static void SetUpTestSuite() {
-        try {
-            context_ = gl::Context::create();
-        } catch (const std::exception& e) {
-            error_ = e.what();
-        }
-    }
-    static void TearDownTestSuite() { context_.reset(); }
-    void SetUp() override {
-        ASSERT_TRUE(context_) << "no GL context: " << error_;
-        context_->make_current();
-    }
-    static std::unique_ptr<gl::Context> context_;
-    static std::string error_;
-};
-std::unique_ptr<gl::Context> TextureGLTest::context_;
-std::string TextureGLTest::error_;
+class TextureGLTest : public SharedGlContextTest {};
 
 struct FloorCheck {
     double dark_fraction = 0, light_fraction = 0; ///< pixels at each colour (within 2 %)

@@ -8,20 +8,13 @@
 
 #include "hemirad/error.h"
 #include "hemirad/memory_guard.h"
+#include "solver/solver_detail.h"
 
 namespace hemirad {
 
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-double sum(const dvec3& v) { return v.x + v.y + v.z; }
-
-} // namespace
+using solver_detail::Clock;
+using solver_detail::since;
+using solver_detail::sum;
 
 void validate_options(const SolverOptions& o) {
     if (!(o.tolerance > 0 && o.tolerance < 1))

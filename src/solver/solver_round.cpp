@@ -8,18 +8,15 @@
 
 #include "hemirad/error.h"
 #include "hemirad/solver.h"
+#include "solver/solver_detail.h"
 
 namespace hemirad {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-double sum(const dvec3& v) { return v.x + v.y + v.z; }
+using solver_detail::Clock;
+using solver_detail::since;
+using solver_detail::sum;
 
 /// What a rank tells the others about its shot (fixed size, then the links and view codes).
 struct ShotHeader {
