@@ -32,7 +32,9 @@ using namespace hemirad;
 
 namespace {
 
-double luminance(const dvec3& e) { return 0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z; }
+double luminance(const dvec3& e) {
+    return 0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z;
+}
 
 struct Accuracy {
     double median = 0, worst = 0;
@@ -78,8 +80,8 @@ Accuracy check_against_reference(const char* name, double per_point, double medi
         if (std::abs(y - ys[k]) > per_point * ys[k] + 4 * sem) {
             ++a.outside;
             ADD_FAILURE() << name << " point " << k << " (" << probes[k].position.x << ", "
-                          << probes[k].position.y << ", " << probes[k].position.z << "): ours "
-                          << y << ", reference " << ys[k] << " +- " << sem;
+                          << probes[k].position.y << ", " << probes[k].position.z << "): ours " << y
+                          << ", reference " << ys[k] << " +- " << sem;
         }
     }
     std::sort(errors.begin(), errors.end());
@@ -93,6 +95,10 @@ Accuracy check_against_reference(const char* name, double per_point, double medi
 
 } // namespace
 
-TEST(Accuracy, CornellAgainstReference) { check_against_reference("cornell", 0.10, 0.02); }
+TEST(Accuracy, CornellAgainstReference) {
+    check_against_reference("cornell", 0.10, 0.02);
+}
 
-TEST(Accuracy, LightRoomAgainstReference) { check_against_reference("room", 0.10, 0.02); }
+TEST(Accuracy, LightRoomAgainstReference) {
+    check_against_reference("room", 0.10, 0.02);
+}

@@ -20,15 +20,15 @@
 #include <memory>
 #include <numbers>
 
+#include "hemirad/export.h"
 #include "hemirad/form_factors.h"
 #include "hemirad/gather.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/readout.h"
-#include "hemirad/export.h"
 #include "hemirad/render.h"
-#include "render/discontinuity_field.h"
 #include "hemirad/solver.h"
 #include "hemirad/validation_scenes.h"
+#include "render/discontinuity_field.h"
 
 using namespace hemirad;
 using namespace hemirad::validation;
@@ -66,7 +66,9 @@ double howell_b4(double H, double d, double L) {
 // Form-factor algebra. Both corner forms are odd in each in-plane offset when extended by
 // sign, so a rectangle [u0,u1] x [v0,v1] (offsets from the foot of the normal) is
 // G(u1,v1) - G(u0,v1) - G(u1,v0) + G(u0,v0).
-double sgn(double x) { return x < 0 ? -1.0 : 1.0; }
+double sgn(double x) {
+    return x < 0 ? -1.0 : 1.0;
+}
 
 // Element facing a parallel rectangle [u0,u1] x [v0,v1] at distance c.
 double parallel_rect(double u0, double u1, double v0, double v1, double c) {
@@ -96,8 +98,8 @@ double kernel_rect(const dvec3& p, const dvec3& n, const HorizontalRect& r) {
 // F from a probe to a horizontal rectangle, by the closed forms. Probes lie on the floor or
 // ceiling (normal +-y: B-3) or on the wall x = 0 (normal +x: B-4).
 double closed_form_rect(const dvec3& p, const dvec3& n, const HorizontalRect& r) {
-    if (std::abs(n.y) > 0.5) return parallel_rect(r.x0 - p.x, r.x1 - p.x, r.z0 - p.z, r.z1 - p.z,
-                                                  std::abs(r.y - p.y));
+    if (std::abs(n.y) > 0.5)
+        return parallel_rect(r.x0 - p.x, r.x1 - p.x, r.z0 - p.z, r.z1 - p.z, std::abs(r.y - p.y));
     EXPECT_EQ(p.x, 0.0) << "wall probes lie on x = 0";
     return perpendicular_rect(r.x0, r.x1, r.z0 - p.z, r.z1 - p.z, std::abs(r.y - p.y));
 }
@@ -105,8 +107,8 @@ double closed_form_rect(const dvec3& p, const dvec3& n, const HorizontalRect& r)
 // Reference form factor: closed form, asserted equal to the kernel.
 double reference_ff(const dvec3& p, const dvec3& n, const HorizontalRect& r) {
     const double closed = closed_form_rect(p, n, r), kernel = kernel_rect(p, n, r);
-    EXPECT_NEAR(closed, kernel, 1e-12) << "Howell algebra vs kernel at " << p.x << "," << p.y
-                                       << "," << p.z;
+    EXPECT_NEAR(closed, kernel, 1e-12)
+        << "Howell algebra vs kernel at " << p.x << "," << p.y << "," << p.z;
     return closed;
 }
 
@@ -138,8 +140,8 @@ void report(const char* test, const Point& pt, double ref, double ours) {
     const double err = (ours - ref) / ref;
     std::printf("%-5s %-16s (%4.2f,%4.2f,%4.2f)  ref %10.4f  ours %10.4f  err %+7.3f%%\n", test,
                 pt.name, pt.p.x, pt.p.y, pt.p.z, ref, ours, 100 * err);
-    EXPECT_LT(std::abs(err), kTolerance) << test << " " << pt.name << ": ref " << ref
-                                         << ", ours " << ours;
+    EXPECT_LT(std::abs(err), kTolerance)
+        << test << " " << pt.name << ": ref " << ref << ", ours " << ours;
 }
 
 const dvec3 kUp(0, 1, 0), kDown(0, -1, 0), kIntoRoom(1, 0, 0);
@@ -156,10 +158,10 @@ TEST(Cie171, AreaSource_5_3) {
     ASSERT_TRUE(s.converged());
     const Hierarchy& h = s.solution();
     const Point points[] = {
-        {"floor centre", {2, 0, 2}, kUp},        {"floor (1,1)", {1, 0, 1}, kUp},
-        {"floor (0.5,2)", {0.5, 0, 2}, kUp},     {"floor (3.5,3.5)", {3.5, 0, 3.5}, kUp},
-        {"floor (2,0.25)", {2, 0, 0.25}, kUp},   {"wall y0.5", {0, 0.5, 2}, kIntoRoom},
-        {"wall y1.5", {0, 1.5, 2}, kIntoRoom},   {"wall y2.5", {0, 2.5, 2}, kIntoRoom},
+        {"floor centre", {2, 0, 2}, kUp},         {"floor (1,1)", {1, 0, 1}, kUp},
+        {"floor (0.5,2)", {0.5, 0, 2}, kUp},      {"floor (3.5,3.5)", {3.5, 0, 3.5}, kUp},
+        {"floor (2,0.25)", {2, 0, 0.25}, kUp},    {"wall y0.5", {0, 0.5, 2}, kIntoRoom},
+        {"wall y1.5", {0, 1.5, 2}, kIntoRoom},    {"wall y2.5", {0, 2.5, 2}, kIntoRoom},
         {"wall (1.5,1)", {0, 1.5, 1}, kIntoRoom}, {"wall (2.75,3.5)", {0, 2.75, 3.5}, kIntoRoom},
     };
     for (const Point& pt : points)
@@ -178,10 +180,10 @@ TEST(Cie171, LitFloor_5_6) {
     const Hierarchy& h = s.solution();
     const HorizontalRect floor{0, CieRoom::width, 0, CieRoom::depth, 0};
     const Point points[] = {
-        {"ceiling centre", {2, 3, 2}, kDown},   {"ceiling (1,1)", {1, 3, 1}, kDown},
+        {"ceiling centre", {2, 3, 2}, kDown},      {"ceiling (1,1)", {1, 3, 1}, kDown},
         {"ceiling (0.25,2)", {0.25, 3, 2}, kDown}, {"ceiling (3.5,0.5)", {3.5, 3, 0.5}, kDown},
-        {"wall y0.5", {0, 0.5, 2}, kIntoRoom},  {"wall y1.5", {0, 1.5, 2}, kIntoRoom},
-        {"wall y2.5", {0, 2.5, 2}, kIntoRoom},  {"wall (1.5,0.5)", {0, 1.5, 0.5}, kIntoRoom},
+        {"wall y0.5", {0, 0.5, 2}, kIntoRoom},     {"wall y1.5", {0, 1.5, 2}, kIntoRoom},
+        {"wall y2.5", {0, 2.5, 2}, kIntoRoom},     {"wall (1.5,0.5)", {0, 1.5, 0.5}, kIntoRoom},
     };
     for (const Point& pt : points)
         report("5.6", pt, M * reference_ff(pt.p, pt.n, floor), probe(scene, h, pt));
@@ -221,8 +223,7 @@ TEST(Cie171, LitFloorObstructed_5_7) {
         shadow.x0 = std::max(shadow.x0, 0.0), shadow.x1 = std::min(shadow.x1, CieRoom::width);
         shadow.z0 = std::max(shadow.z0, 0.0), shadow.z1 = std::min(shadow.z1, CieRoom::depth);
         double F = reference_ff(pt.p, pt.n, floor);
-        if (shadow.x0 < shadow.x1 && shadow.z0 < shadow.z1)
-            F -= reference_ff(pt.p, pt.n, shadow);
+        if (shadow.x0 < shadow.x1 && shadow.z0 < shadow.z1) F -= reference_ff(pt.p, pt.n, shadow);
         report("5.7", pt, M * F, probe(scene, h, pt));
     }
 }
@@ -251,8 +252,8 @@ TEST(Discontinuities, ShadowEdgeWithinALeaf) {
                        Material{"grey", dvec3(kRho), dvec3(0.0)}};
     scene.groups = {"floor", "light", "plate"};
     const auto rect = [&](const HorizontalRect& r, bool up, std::uint32_t m, std::uint32_t g) {
-        std::vector<dvec3> c = {{r.x0, r.y, r.z0}, {r.x0, r.y, r.z1}, {r.x1, r.y, r.z1},
-                                {r.x1, r.y, r.z0}};
+        std::vector<dvec3> c = {
+            {r.x0, r.y, r.z0}, {r.x0, r.y, r.z1}, {r.x1, r.y, r.z1}, {r.x1, r.y, r.z0}};
         if (!up) std::reverse(c.begin(), c.end());
         add_polygon(scene, c, m, g);
     };
@@ -314,7 +315,8 @@ TEST(Discontinuities, ShadowEdgeWithinALeaf) {
             double open;
             const double B = kRho * exact(p, open);
             const double ef = (fine.atlas.at(fc.x0 + i, fc.y0 + j)[0] - B) / (kRho * open);
-            const double ec = (coarse.atlas.at(cc.x0 + i / 4, cc.y0 + j / 4)[0] - B) / (kRho * open);
+            const double ec =
+                (coarse.atlas.at(cc.x0 + i / 4, cc.y0 + j / 4)[0] - B) / (kRho * open);
             lm_fine += ef * ef, lm_coarse += ec * ec, ++lm_n;
         }
     ASSERT_GT(lm_n, 50);

@@ -81,8 +81,8 @@ double irradiance_sum(const Hierarchy& h) {
 void row(const char* test, const std::string& what, double ref, double ours,
          double tolerance = kTolerance) {
     const double err = (ours - ref) / ref;
-    std::printf("%-8s %-28s ref %12.6g  ours %12.6g  err %+7.3f%%\n", test, what.c_str(), ref,
-                ours, 100 * err);
+    std::printf("%-8s %-28s ref %12.6g  ours %12.6g  err %+7.3f%%\n", test, what.c_str(), ref, ours,
+                100 * err);
     EXPECT_LT(std::abs(err), tolerance) << test << " " << what;
 }
 
@@ -114,8 +114,7 @@ TEST_P(Cie171Cube, AverageIndirect_5_8) {
     row("5.8", "rho " + std::to_string(rho).substr(0, 4) + " <I>", ref, ours);
 }
 
-INSTANTIATE_TEST_SUITE_P(Reflectances, Cie171Cube,
-                         ::testing::Values(0.05, 0.3, 0.5, 0.8, 0.95));
+INSTANTIATE_TEST_SUITE_P(Reflectances, Cie171Cube, ::testing::Values(0.05, 0.3, 0.5, 0.8, 0.95));
 
 // --- integrating sphere -----------------------------------------------------------------
 
@@ -178,9 +177,11 @@ TEST_P(Furnace, IrradianceIsEOverOneMinusRho) {
                 s.shots(), s.error_bound(), 100 * escaped, s.seconds());
     row("furnace", tag + " <H> all", expected, irradiance_sum(h) / scene.total_area());
     for (std::uint32_t g = 0; g < scene.groups.size(); ++g)
-        row("furnace", tag + " <H> " + scene.groups[g], expected,
-            group_irradiance(h, g).E_avg.x);
-    const struct { const char* name; dvec3 p, n; } points[] = {
+        row("furnace", tag + " <H> " + scene.groups[g], expected, group_irradiance(h, g).E_avg.x);
+    const struct {
+        const char* name;
+        dvec3 p, n;
+    } points[] = {
         {"floor centre", {0.5, 0, 0.5}, {0, 1, 0}},
         {"floor (0.1,0.1)", {0.1, 0, 0.1}, {0, 1, 0}},
         {"wall x- centre", {0, 0.5, 0.5}, {1, 0, 0}},

@@ -46,8 +46,7 @@ std::vector<int> rows_of(const Image8& image, int x, Rgb8 colour) {
 }
 
 double srgb_luminance(Rgb8 c) {
-    return luminance(srgb_decode(c.r / 255.0), srgb_decode(c.g / 255.0),
-                     srgb_decode(c.b / 255.0));
+    return luminance(srgb_decode(c.r / 255.0), srgb_decode(c.g / 255.0), srgb_decode(c.b / 255.0));
 }
 
 } // namespace
@@ -71,12 +70,13 @@ TEST_P(DrawTextBounds, InkStaysInsideTheReportedBox) {
     EXPECT_GE(b.x1, x + text_width(text, scale) - kGlyphAdvance * scale);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Font, DrawTextBounds,
-    ::testing::Values(std::make_tuple("Hello, World!", 1), std::make_tuple("gjpqy_|", 1),
-                      std::make_tuple("E = 12.5 W/m\xC2\xB2", 1), std::make_tuple("0123456789", 2),
-                      std::make_tuple("two\nlines, the second longer", 1),
-                      std::make_tuple("rho \xCF\x81 = 0.5, 45\xC2\xB0", 3)));
+INSTANTIATE_TEST_SUITE_P(Font, DrawTextBounds,
+                         ::testing::Values(std::make_tuple("Hello, World!", 1),
+                                           std::make_tuple("gjpqy_|", 1),
+                                           std::make_tuple("E = 12.5 W/m\xC2\xB2", 1),
+                                           std::make_tuple("0123456789", 2),
+                                           std::make_tuple("two\nlines, the second longer", 1),
+                                           std::make_tuple("rho \xCF\x81 = 0.5, 45\xC2\xB0", 3)));
 
 TEST(DrawText, WidthAndHeightFollowTheCellSizes) {
     EXPECT_EQ(text_width(""), 0);
@@ -95,8 +95,10 @@ TEST(DrawText, EveryPrintableAsciiGlyphHasInkExceptSpace) {
         Image8 image(8, 10);
         draw_text(image, 1, 1, std::string(1, char(c)), kWhite);
         const Box b = ink_box(image, kBlack);
-        if (c == ' ') EXPECT_EQ(b.count, 0);
-        else EXPECT_GT(b.count, 0) << "character " << char(c);
+        if (c == ' ')
+            EXPECT_EQ(b.count, 0);
+        else
+            EXPECT_GT(b.count, 0) << "character " << char(c);
     }
     // Distinct glyphs for look-alikes.
     const auto bitmap = [](const char* s) {
@@ -240,8 +242,7 @@ TEST(DrawContactSheet, DimensionsAndPlacement) {
 
 TEST(DrawContactSheet, LongCaptionsAreCutToTheCell) {
     std::vector<Image8> frames = {Image8(40, 20, kWhite), Image8(40, 20, kWhite)};
-    const Image8 sheet =
-        contact_sheet(frames, {"a caption much longer than forty pixels", ""}, 2);
+    const Image8 sheet = contact_sheet(frames, {"a caption much longer than forty pixels", ""}, 2);
     // Nothing drawn into the second cell's caption strip.
     const int x0 = kContactSheetPad + 40 + kContactSheetPad;
     for (int y = kContactSheetPad + 20; y < sheet.height; ++y)
@@ -347,7 +348,8 @@ TEST(DrawDemo, WritesASampleContactSheetAndPlot) {
         }
     std::vector<Image8> frames;
     std::vector<std::string> captions;
-    for (auto [op, name] : {std::pair{ToneMap::Clamp, "clamp"}, {ToneMap::Reinhard, "reinhard"},
+    for (auto [op, name] : {std::pair{ToneMap::Clamp, "clamp"},
+                            {ToneMap::Reinhard, "reinhard"},
                             {ToneMap::Aces, "aces"}}) {
         ToneMap tm;
         tm.op = op;
@@ -367,8 +369,10 @@ TEST(DrawDemo, WritesASampleContactSheetAndPlot) {
     Image8 font(w, h, {20, 20, 20});
     draw_text(font, 4, 4,
               " !\"#$%&'()*+,-./\n0123456789:;<=>?\n@ABCDEFGHIJKLMNO\nPQRSTUVWXYZ[\\]^_", kWhite);
-    draw_text(font, 4, 46, "`abcdefghijklmno\npqrstuvwxyz{|}~\n\xC2\xB0\xC2\xB2\xC2\xB3\xC2\xB5"
-              "\xC2\xB7\xC3\x97\xCF\x81\xCF\x80 \xE2\x98\x83", {255, 220, 120});
+    draw_text(font, 4, 46,
+              "`abcdefghijklmno\npqrstuvwxyz{|}~\n\xC2\xB0\xC2\xB2\xC2\xB3\xC2\xB5"
+              "\xC2\xB7\xC3\x97\xCF\x81\xCF\x80 \xE2\x98\x83",
+              {255, 220, 120});
     draw_text(font, 4, 82, "Scale 2", {120, 200, 255}, 2);
     frames.push_back(font);
     captions.push_back("the built-in font");
@@ -394,12 +398,12 @@ TEST(DrawDemo, WritesASampleContactSheetAndPlot) {
         }
         series.push_back(p);
     }
-    const Image8 plot = plot_lines(series, "Error bound per shot", "shot",
-                                   "||B - B*||1 bound [W]", true, 640, 400);
+    const Image8 plot =
+        plot_lines(series, "Error bound per shot", "shot", "||B - B*||1 bound [W]", true, 640, 400);
     write_png((dir / "plot_log.png").string(), plot);
-    const Image8 lin = plot_lines({{"row sum", {0, 1, 2, 3, 4, 5}, {0.98, 1.01, 0.995, 1.0, 0.97,
-                                                                   1.02}, plot_palette(4)}},
-                                  "Row sums", "shot", "sum F A / A_S", false, 480, 300);
+    const Image8 lin = plot_lines(
+        {{"row sum", {0, 1, 2, 3, 4, 5}, {0.98, 1.01, 0.995, 1.0, 0.97, 1.02}, plot_palette(4)}},
+        "Row sums", "shot", "sum F A / A_S", false, 480, 300);
     write_png((dir / "plot_linear.png").string(), lin);
     EXPECT_EQ(read_png((dir / "plot_log.png").string()).rgb, plot.rgb);
     EXPECT_EQ(read_png((dir / "contact_sheet.png").string()).width, sheet.width);

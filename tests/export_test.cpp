@@ -22,7 +22,7 @@ Scene quad_and_triangle() {
     s.materials.push_back({"lamp", dvec3(0.5), dvec3(1.0)});
     s.groups = {"floor", "lamp shade"};
     add_polygon(s, {{0, 0, 0}, {3, 0, 0}, {2.5, 2, 0}, {0.2, 1.5, 0}}, 0, 0); // quad
-    add_polygon(s, {{0, 0, 1}, {0.4, 1.7, 1}, {2, 0.3, 1}}, 1, 1);           // triangle
+    add_polygon(s, {{0, 0, 1}, {0.4, 1.7, 1}, {2, 0.3, 1}}, 1, 1);            // triangle
     add_polygon(s, {{4, 0, 0}, {5, 0, 0}, {5, 1, 0}, {4, 1, 0}}, 0, 0);       // small quad
     finish_scene(s, "test");
     return s;
@@ -77,7 +77,8 @@ TEST(Export, LeafMeshSharesVerticesWithinPolygons) {
                 for (std::uint32_t v : tri) {
                     double best = 1e300;
                     for (int k = 0; k < g.count; ++k)
-                        best = std::min(best, glm::length(glm::dvec3(m.positions[v]) - g.corners[k]));
+                        best =
+                            std::min(best, glm::length(glm::dvec3(m.positions[v]) - g.corners[k]));
                     EXPECT_LT(best, 1e-5) << "polygon " << p << " leaf " << i;
                 }
             }

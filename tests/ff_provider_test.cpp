@@ -171,7 +171,9 @@ struct Closed {
     double exact;
 };
 
-void PrintTo(const Closed& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const Closed& c, std::ostream* os) {
+    *os << c.name;
+}
 
 class ReferenceConvergence : public ::testing::TestWithParam<Closed> {};
 

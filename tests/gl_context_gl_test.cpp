@@ -26,7 +26,7 @@ void PrintTo(Backend backend, std::ostream* out) {
 namespace {
 
 class ContextTest : public ::testing::TestWithParam<Backend> {
-protected:
+  protected:
     void SetUp() override {
         ContextOptions options;
         options.backend = GetParam();
@@ -128,8 +128,7 @@ TEST_P(ContextTest, UnknownShaderFileIsNamed) {
         link_program({"no_such_shader.vert"});
         FAIL() << "an unknown shader file was accepted";
     } catch (const RuntimeError& e) {
-        EXPECT_NE(std::string(e.what()).find("no_such_shader.vert"), std::string::npos)
-            << e.what();
+        EXPECT_NE(std::string(e.what()).find("no_such_shader.vert"), std::string::npos) << e.what();
     }
 }
 

@@ -9,8 +9,7 @@
 namespace hemirad::gl {
 namespace {
 
-template <class T>
-class GlObjectTest : public ::testing::Test {};
+template <class T> class GlObjectTest : public ::testing::Test {};
 
 using Wrappers =
     ::testing::Types<Buffer, Texture, Framebuffer, Renderbuffer, VertexArray, Shader, Program>;

@@ -25,8 +25,7 @@ Scene l_room() {
 }
 
 // Sets every node's irradiance H of polygon p to f(centre of the node).
-template <class F>
-void set_irradiance(Hierarchy& h, std::uint32_t p, F f) {
+template <class F> void set_irradiance(Hierarchy& h, std::uint32_t p, F f) {
     const Polygon& poly = h.scene().polygons[p];
     for (std::uint32_t l = 0; l <= std::uint32_t(h.depth(p)); ++l)
         for (std::uint32_t i = 0; i < (1u << (2 * l)); ++i)
@@ -40,12 +39,14 @@ TEST(Grid, ParsesSpecs) {
     EXPECT_EQ(g.group, "floor");
     EXPECT_EQ(g.nx, 20);
     EXPECT_EQ(g.ny, 10);
-    g = parse_grid_spec("desk:a:3\xc3\x97" "4"); // U+00D7, group name with ':'
+    g = parse_grid_spec("desk:a:3\xc3\x97"
+                        "4"); // U+00D7, group name with ':'
     EXPECT_EQ(g.group, "desk:a");
     EXPECT_EQ(g.nx, 3);
     EXPECT_EQ(g.ny, 4);
-    for (const char* bad : {"floor", "floor:", ":3x3", "floor:3", "floor:0x3", "floor:3x-1",
-                            "floor:3x", "floor:x3", "floor:3y3", "floor:100000x1", "floor:5000x5000"})
+    for (const char* bad :
+         {"floor", "floor:", ":3x3", "floor:3", "floor:0x3", "floor:3x-1", "floor:3x", "floor:x3",
+          "floor:3y3", "floor:100000x1", "floor:5000x5000"})
         EXPECT_THROW(parse_grid_spec(bad), InputError) << bad;
 }
 
@@ -54,7 +55,8 @@ TEST(Grid, UniformIrradianceGivesUniformityOne) {
     HierarchyOptions ho;
     ho.patch_size = 0.25;
     Hierarchy h(s, discretise(s, ho));
-    for (std::uint32_t p = 0; p < 3; ++p) set_irradiance(h, p, [](dvec3) { return dvec3(2, 1, 4); });
+    for (std::uint32_t p = 0; p < 3; ++p)
+        set_irradiance(h, p, [](dvec3) { return dvec3(2, 1, 4); });
     const GridResult r = evaluate_grid(h, {"floor", 4, 4});
     EXPECT_NEAR(r.width, 2, 1e-12);
     EXPECT_NEAR(r.height, 2, 1e-12);
@@ -117,8 +119,8 @@ TEST(Grid, LinearIrradianceStatistics) {
     // A pixel near the top-left corner of cell (i, j): 2 x 2 units in 8 x 8 cells of 720 / 8
     // = 90 pixels, capped to 72, from (10, 34); row j = 0 at the bottom.
     const auto cell = [&](int i, int j) { return img.get(10 + i * 72 + 3, 34 + (7 - j) * 72 + 3); };
-    EXPECT_EQ(cell(6, 6), (Rgb8{170, 170, 170}));       // x, y in (1, 2): no polygon
-    EXPECT_EQ(cell(7, 0), false_colour(1.0));           // x = 1.9375: the maximum
+    EXPECT_EQ(cell(6, 6), (Rgb8{170, 170, 170}));                      // x, y in (1, 2): no polygon
+    EXPECT_EQ(cell(7, 0), false_colour(1.0));                          // x = 1.9375: the maximum
     EXPECT_EQ(img.get(10 + 72 * 2, 34 + 72 * 6), (Rgb8{228, 26, 28})); // the cross at (0.5, 0.5)
 }
 
@@ -153,8 +155,9 @@ TEST(Grid, ManyTilesEachPointOnItsTile) {
     for (int j = 0; j < ty; ++j)
         for (int i = 0; i < tx; ++i) {
             const double x0 = 0.05 * i, y0 = 0.05 * j;
-            add_polygon(s, {{x0, y0, 0}, {x0 + 0.05, y0, 0}, {x0 + 0.05, y0 + 0.05, 0},
-                            {x0, y0 + 0.05, 0}}, 0, 0);
+            add_polygon(
+                s, {{x0, y0, 0}, {x0 + 0.05, y0, 0}, {x0 + 0.05, y0 + 0.05, 0}, {x0, y0 + 0.05, 0}},
+                0, 0);
         }
     finish_scene(s, "tiles");
     Hierarchy h(s, discretise(s, {}));

@@ -25,8 +25,8 @@ gl::Context& context() {
 }
 
 std::unique_ptr<FormFactorProvider> gpu_provider(const std::string& mode, const Scene& scene,
-                                                 const Discretisation& disc, int res,
-                                                 int angle = 0, double bias = 0) {
+                                                 const Discretisation& disc, int res, int angle = 0,
+                                                 double bias = 0) {
     context();
     ProviderOptions o;
     o.gpu.resolution = res;
@@ -116,7 +116,8 @@ double b3(double a, double b, double c) { // element parallel to a x b at c, nor
            (2 * M_PI);
 }
 double b4(double L, double d, double H) { // element at origin, normal +z; L x H plate in y = d
-    return (std::atan(L / d) - d / std::sqrt(H * H + d * d) * std::atan(L / std::sqrt(H * H + d * d))) /
+    return (std::atan(L / d) -
+            d / std::sqrt(H * H + d * d) * std::atan(L / std::sqrt(H * H + d * d))) /
            (2 * M_PI);
 }
 
@@ -133,8 +134,8 @@ TEST_P(ShaderKernel, AnalyticValueMatchesClosedForm) {
     // Receiver: a square centred at the origin, facing +z, large enough to cover pixels; at
     // depth 0 its analytic value is taken at its centre, the origin, whatever its size.
     const double e = 0.05;
-    const Scene scene = make_scene(
-        {{{-e, -e, 0}, {e, -e, 0}, {e, e, 0}, {-e, e, 0}}, k.shooter}, {"receiver", "shooter"});
+    const Scene scene = make_scene({{{-e, -e, 0}, {e, -e, 0}, {e, e, 0}, {-e, e, 0}}, k.shooter},
+                                   {"receiver", "shooter"});
     ASSERT_GT(glm::dot(scene.polygons[1].normal, dvec3(0) - scene.polygons[1].centroid()), 0)
         << "test setup: the shooter must face the receiver";
     const Discretisation disc = discretise(scene, {0, 0});
@@ -149,8 +150,8 @@ TEST_P(ShaderKernel, AnalyticValueMatchesClosedForm) {
         provider->shoot(whole_polygon_shooter(scene, 1), links);
         ASSERT_EQ(links.size(), 1u);
         const double error = links[0].ff_analytic / k.expected - 1;
-        std::printf("%-14s %-5s F %.9f  Howell %.9f  relative error %+.2e\n", k.name,
-                    names[angle], double(links[0].ff_analytic), k.expected, error);
+        std::printf("%-14s %-5s F %.9f  Howell %.9f  relative error %+.2e\n", k.name, names[angle],
+                    double(links[0].ff_analytic), k.expected, error);
         EXPECT_NEAR(error, 0, tolerance[angle])
             << names[angle] << ": " << links[0].ff_analytic << " vs " << k.expected;
     }
@@ -162,8 +163,8 @@ INSTANTIATE_TEST_SUITE_P(
         KernelCase{"B3_1_1_1", {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}}, b3(1, 1, 1)},
         KernelCase{"B3_2_1_1", {{0, 0, 1}, {0, 1, 1}, {2, 1, 1}, {2, 0, 1}}, b3(2, 1, 1)},
         KernelCase{"B3_3_4_2", {{0, 0, 2}, {0, 4, 2}, {3, 4, 2}, {3, 0, 2}}, b3(3, 4, 2)},
-        KernelCase{"B3_small_far", {{0, 0, 5}, {0, 0.1, 5}, {0.1, 0.1, 5}, {0.1, 0, 5}},
-                   b3(0.1, 0.1, 5)},
+        KernelCase{
+            "B3_small_far", {{0, 0, 5}, {0, 0.1, 5}, {0.1, 0.1, 5}, {0.1, 0, 5}}, b3(0.1, 0.1, 5)},
         KernelCase{"centred_square",
                    {{-0.5, -0.5, 1}, {-0.5, 0.5, 1}, {0.5, 0.5, 1}, {0.5, -0.5, 1}},
                    4 * b3(0.5, 0.5, 1)},
@@ -234,9 +235,9 @@ Decoded decode_floor(const Scene& scene, const Discretisation& disc, int res, do
 
 Scene floor_and_eye(dvec3 eye, bool triangle_floor) {
     const double e = 1e-3;
-    std::vector<dvec3> floor = triangle_floor
-                                   ? std::vector<dvec3>{{-4, -4, 0}, {4, -4, 0}, {-4, 4, 0}}
-                                   : std::vector<dvec3>{{-4, -4, 0}, {4, -4, 0}, {4, 4, 0}, {-4, 4, 0}};
+    std::vector<dvec3> floor =
+        triangle_floor ? std::vector<dvec3>{{-4, -4, 0}, {4, -4, 0}, {-4, 4, 0}}
+                       : std::vector<dvec3>{{-4, -4, 0}, {4, -4, 0}, {4, 4, 0}, {-4, 4, 0}};
     return make_scene({floor,
                        {eye + dvec3(-e, -e, 0), eye + dvec3(-e, e, 0), eye + dvec3(e, e, 0),
                         eye + dvec3(e, -e, 0)}},
@@ -301,8 +302,8 @@ TEST(Hybrid, ClampedPartialNodesAndCloserToReference) {
     for (const auto& [x, y] : std::vector<std::pair<double, double>>{
              {-0.2, -0.2}, {-0.2, 0.2}, {0.2, 0.2}, {0.2, -0.2}}) // faces down (-z)
         blocker.push_back(dvec3(0.5 + c * x - sn * y, 0.5 + sn * x + c * y, hb));
-    const Scene scene = make_scene({{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}},  // floor, up
-                                    {{0, 0, h}, {0, 1, h}, {1, 1, h}, {1, 0, h}},  // ceiling
+    const Scene scene = make_scene({{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, // floor, up
+                                    {{0, 0, h}, {0, 1, h}, {1, 1, h}, {1, 0, h}}, // ceiling
                                     blocker},
                                    {"floor", "ceiling", "blocker"});
     const int depth = 6, n = 1 << depth;
@@ -344,7 +345,8 @@ TEST(Hybrid, ClampedPartialNodesAndCloserToReference) {
         for (const Link& l : links) {
             if (l.receiver.polygon != 0) continue;
             const std::uint32_t m = 1u << l.receiver.level, shift = depth - l.receiver.level;
-            const std::uint32_t x0 = (l.receiver.index % m) << shift, y0 = (l.receiver.index / m) << shift;
+            const std::uint32_t x0 = (l.receiver.index % m) << shift, y0 = (l.receiver.index / m)
+                                                                           << shift;
             for (std::uint32_t y = y0; y < y0 + (1u << shift); ++y)
                 for (std::uint32_t x = x0; x < x0 + (1u << shift); ++x) gpu[y * n + x] = l.ff;
             if (std::string(mode) != "hybrid") continue;

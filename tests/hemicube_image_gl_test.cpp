@@ -64,8 +64,8 @@ TEST(HemicubeImage, LastShotOfTheCube) {
 TEST(HemicubeImage, CpuProvidersHaveNone) {
     const Scene scene = make_builtin("cube");
     const Discretisation disc = discretise(scene, HierarchyOptions{});
-    const std::unique_ptr<FormFactorProvider> provider = make_provider("reference", scene, disc,
-                                                                       ProviderOptions{});
+    const std::unique_ptr<FormFactorProvider> provider =
+        make_provider("reference", scene, disc, ProviderOptions{});
     std::vector<Link> links;
     provider->shoot(whole_polygon_shooter(scene, 0), links);
     EXPECT_EQ(provider->last_hemicube().rgba, nullptr);

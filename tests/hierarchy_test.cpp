@@ -13,7 +13,7 @@ Scene two_polygons() {
     s.materials.push_back({"grey", dvec3(0.5, 0.25, 0.75), dvec3(0.0)});
     s.groups.push_back("g");
     add_polygon(s, {{0, 0, 0}, {3, 0, 0}, {2.5, 2, 0}, {0.2, 1.5, 0}}, 0, 0); // quad
-    add_polygon(s, {{0, 0, 1}, {0.4, 1.7, 1}, {2, 0.3, 1}}, 0, 0);           // triangle
+    add_polygon(s, {{0, 0, 1}, {0.4, 1.7, 1}, {2, 0.3, 1}}, 0, 0);            // triangle
     finish_scene(s, "test");
     return s;
 }
@@ -43,7 +43,9 @@ TEST(Hierarchy, PushPullConservesPowerAndTracksUnshot) {
     h.receive({0, 0, 0}, e1);
     h.receive({0, 1, 2}, e2);
     h.receive({0, 3, 17}, e3);
-    const auto area = [&](std::uint32_t l, std::uint32_t i) { return double(h.node({0, l, i}).area); };
+    const auto area = [&](std::uint32_t l, std::uint32_t i) {
+        return double(h.node({0, l, i}).area);
+    };
     const dvec3 rho = s.materials[0].rho;
     const dvec3 expected_power = rho * (e1 * area(0, 0) + e2 * area(1, 2) + e3 * area(3, 17));
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(h.unshot_power(0)[c], expected_power[c], 1e-9);

@@ -22,11 +22,11 @@ namespace {
 
 /// A fresh, empty directory for one test, removed at the end.
 class TempDir {
-public:
+  public:
     TempDir() {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path_ = fs::temp_directory_path() / ("hemirad_image_io_" + std::to_string(::getpid()) +
-                                             "_" + info->name());
+        path_ = fs::temp_directory_path() /
+                ("hemirad_image_io_" + std::to_string(::getpid()) + "_" + info->name());
         fs::remove_all(path_);
         fs::create_directories(path_);
     }
@@ -44,7 +44,7 @@ public:
         return names;
     }
 
-private:
+  private:
     fs::path path_;
 };
 
@@ -90,7 +90,7 @@ TEST(ImageExr, FloatRoundTripIsExact) {
 TEST(ImageExr, HalfRoundTripIsWithinHalfPrecision) {
     TempDir dir;
     ImageRGB image = test_image(9, 11);
-    image.at(3, 3)[0] = 1e6f;   // beyond the largest half: clamped, not infinite
+    image.at(3, 3)[0] = 1e6f; // beyond the largest half: clamped, not infinite
     image.at(3, 3)[1] = -1e6f;
     write_exr(dir.file("h.exr"), image); // half by default
     const ImageRGB back = read_exr(dir.file("h.exr"));
@@ -180,9 +180,9 @@ TEST(ImagePng, ReadingGarbageThrowsNamingTheFile) {
 TEST(ImageToneMap, SrgbTransferFunction) {
     EXPECT_EQ(srgb_encode(0.0), 0.0);
     EXPECT_EQ(srgb_encode(1.0), 1.0);
-    EXPECT_DOUBLE_EQ(srgb_encode(0.001), 0.01292);           // linear segment
-    EXPECT_NEAR(srgb_encode(0.5), 0.735356983, 1e-8);        // power segment
-    EXPECT_NEAR(srgb_encode(0.0031308), 0.0404500, 1e-6);    // the two segments meet
+    EXPECT_DOUBLE_EQ(srgb_encode(0.001), 0.01292);        // linear segment
+    EXPECT_NEAR(srgb_encode(0.5), 0.735356983, 1e-8);     // power segment
+    EXPECT_NEAR(srgb_encode(0.0031308), 0.0404500, 1e-6); // the two segments meet
     EXPECT_NEAR(srgb_encode(0.0031308 + 1e-12), 0.0404500, 1e-6);
     for (double v : {0.0, 0.002, 0.01, 0.2, 0.7, 1.0})
         EXPECT_NEAR(srgb_decode(srgb_encode(v)), v, 1e-12) << v;
@@ -200,7 +200,7 @@ TEST(ImageToneMap, UnitExposureClampMapsZeroAndOneToBlackAndWhite) {
     EXPECT_EQ(out.get(1, 0), (Rgb8{255, 255, 255}));
     EXPECT_EQ(out.get(2, 0).r, 188); // 255 * 0.73536 = 187.5
     EXPECT_EQ(out.get(3, 0).r, 255);
-    EXPECT_EQ(out.get(4, 0).r, 3);   // 255 * 0.01292 = 3.29
+    EXPECT_EQ(out.get(4, 0).r, 3); // 255 * 0.01292 = 3.29
 }
 
 TEST(ImageToneMap, ExposureIsInStops) {

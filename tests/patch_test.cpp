@@ -20,11 +20,15 @@ Polygon make(std::vector<dvec3> v) {
 }
 
 // A planar but non-parallelogram quad and a scalene triangle.
-Polygon quad() { return make({{0, 0, 0}, {3, 0, 0}, {2.5, 2, 0}, {0.2, 1.5, 0}}); }
-Polygon tri() { return make({{0, 0, 0}, {2, 0.3, 0}, {0.4, 1.7, 0}}); }
+Polygon quad() {
+    return make({{0, 0, 0}, {3, 0, 0}, {2.5, 2, 0}, {0.2, 1.5, 0}});
+}
+Polygon tri() {
+    return make({{0, 0, 0}, {2, 0.3, 0}, {0.4, 1.7, 0}});
+}
 
 class PatchTreeTest : public ::testing::TestWithParam<bool> {
-protected:
+  protected:
     Polygon poly() const { return GetParam() ? tri() : quad(); }
 };
 

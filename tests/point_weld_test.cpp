@@ -13,9 +13,9 @@ using glm::dvec3;
 
 // The brute-force answer: every pair within `tol` that may join, transitively; the root of a
 // set is its smallest index.
-std::vector<std::uint32_t> weld_every_pair(const std::vector<dvec3>& p,
-                                           const std::vector<std::uint8_t>& candidate, double tol,
-                                           const std::function<bool(std::uint32_t, std::uint32_t)>& ok) {
+std::vector<std::uint32_t>
+weld_every_pair(const std::vector<dvec3>& p, const std::vector<std::uint8_t>& candidate, double tol,
+                const std::function<bool(std::uint32_t, std::uint32_t)>& ok) {
     std::vector<std::uint32_t> root(p.size());
     for (std::uint32_t i = 0; i < p.size(); ++i) root[i] = i;
     bool changed = true;

@@ -64,8 +64,7 @@ dvec3 pixel_point(const Camera& c, double half, int size, int px, int py) {
 }
 
 /// Sets every leaf's irradiance so that its radiosity is f(leaf centre) (no emission).
-template <class F>
-void set_leaf_radiosity(Hierarchy& h, const Scene& s, F f) {
+template <class F> void set_leaf_radiosity(Hierarchy& h, const Scene& s, F f) {
     for (std::uint32_t p = 0; p < s.polygons.size(); ++p) {
         const std::uint32_t d = std::uint32_t(h.depth(p));
         const double rho = s.material_of(s.polygons[p]).rho.x;
@@ -76,7 +75,9 @@ void set_leaf_radiosity(Hierarchy& h, const Scene& s, F f) {
     }
 }
 
-double linear_field(const dvec3& p) { return 2.0 + 0.5 * p.x + 0.25 * p.y; }
+double linear_field(const dvec3& p) {
+    return 2.0 + 0.5 * p.x + 0.25 * p.y;
+}
 
 // (a) A uniform emitter filling the view: every pixel is its exitance B = pi Ke, in both modes.
 TEST_F(RenderGLTest, EmittingQuadFillingTheViewShowsItsExitance) {
@@ -234,9 +235,9 @@ TEST_F(RenderGLTest, PatchEdgesDarkenLeafEdgesOnly) {
     o.patch_edges = true;
     const ImageRGB img = r.render(h, top_view(0, 0, 1), o); // 16 pixels per leaf
     const float B = float(std::numbers::pi);
-    EXPECT_NEAR(img.at(8, 8)[0], B, 1e-5);           // a leaf centre
-    EXPECT_LT(img.at(31, 8)[0], 0.5f * B);           // on the edge x = 0 (pixels 31 | 32)
-    EXPECT_LT(img.at(8, 32)[0], 0.5f * B);           // on the edge y = 0
+    EXPECT_NEAR(img.at(8, 8)[0], B, 1e-5); // a leaf centre
+    EXPECT_LT(img.at(31, 8)[0], 0.5f * B); // on the edge x = 0 (pixels 31 | 32)
+    EXPECT_LT(img.at(8, 32)[0], 0.5f * B); // on the edge y = 0
 }
 
 // The state a caller sets up (framebuffer, viewport, program, VAO, clip control) survives.
@@ -365,8 +366,7 @@ ImageRGB render_cornell_96() {
     so.tolerance = 0.02;
     so.provider.gpu.use_current_context = true;
     Solver solver(scene, so);
-    while (solver.step()) {
-    }
+    while (solver.step()) {}
     SolutionRenderer r(scene);
     RenderOptions o;
     o.width = o.height = 96;
@@ -374,7 +374,8 @@ ImageRGB render_cornell_96() {
 }
 
 TEST_F(RenderGLTest, CornellGolden) {
-    const std::string golden_path = std::string(HEMIRAD_SOURCE_DIR) + "/tests/golden/cornell_96.exr";
+    const std::string golden_path =
+        std::string(HEMIRAD_SOURCE_DIR) + "/tests/golden/cornell_96.exr";
     const char* given = std::getenv("HEMIRAD_GOLDEN_ACTUAL");
     const ImageRGB actual = given ? read_exr(given) : render_cornell_96();
     const std::filesystem::path here = std::filesystem::current_path();
@@ -382,8 +383,8 @@ TEST_F(RenderGLTest, CornellGolden) {
     const std::string diff_path = (here / "cornell_96.diff.exr").string();
     if (!std::filesystem::exists(golden_path)) {
         write_exr(actual_path, actual, false);
-        FAIL() << "no golden image " << golden_path << "; wrote the actual image to "
-               << actual_path << " (review and promote with tools/review_golden.sh --promote)";
+        FAIL() << "no golden image " << golden_path << "; wrote the actual image to " << actual_path
+               << " (review and promote with tools/review_golden.sh --promote)";
     }
     const ImageRGB golden = read_exr(golden_path);
     ASSERT_EQ(actual.width, golden.width);

@@ -17,11 +17,12 @@ namespace fs = std::filesystem;
 namespace {
 
 class ObjFiles : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("hemirad_loader_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        dir_ =
+            fs::temp_directory_path() /
+            ("hemirad_loader_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+             "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::create_directories(dir_);
     }
     void TearDown() override { fs::remove_all(dir_); }
@@ -61,7 +62,9 @@ TEST_F(ObjFiles, LoadsQuadWithMaterialAndGroup) {
     EXPECT_NE(s.warnings.back().find("no surface emits"), std::string::npos);
 }
 
-TEST_F(ObjFiles, MissingFile) { expect_error((dir_ / "nope.obj").string(), {"nope.obj", "no such file"}); }
+TEST_F(ObjFiles, MissingFile) {
+    expect_error((dir_ / "nope.obj").string(), {"nope.obj", "no such file"});
+}
 
 TEST_F(ObjFiles, UnparsableVertexNamesLine) {
     expect_error(write("a.obj", "v 0 0 0\nv 1 zero 0\n"), {"a.obj:2:", "'zero'"});
@@ -107,11 +110,12 @@ TEST_F(ObjFiles, EmptyScene) {
 
 TEST_F(ObjFiles, DegeneratePolygonsDroppedWithCount) {
     write("m.mtl", kMtl);
-    const Scene s = load_obj(write("a.obj", std::string(kQuad) +
-                                                "f 1 1 2\nf 1 2 2 1\nv 2 0 0\nf 1 2 5\n"));
+    const Scene s =
+        load_obj(write("a.obj", std::string(kQuad) + "f 1 1 2\nf 1 2 2 1\nv 2 0 0\nf 1 2 5\n"));
     EXPECT_EQ(s.polygons.size(), 1u);
     bool found = false;
-    for (const std::string& w : s.warnings) found |= w.find("dropped 3 degenerate") != std::string::npos;
+    for (const std::string& w : s.warnings)
+        found |= w.find("dropped 3 degenerate") != std::string::npos;
     EXPECT_TRUE(found);
 }
 
@@ -435,8 +439,8 @@ TEST_P(BuiltinAsObj, ReadsBackAsTheSameScene) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, BuiltinAsObj,
-                         ::testing::Values("cornell", "cube", "furnace", "sphere", "cie53",
-                                           "cie56", "cie57", "cie58", "room402", "scene3138"));
+                         ::testing::Values("cornell", "cube", "furnace", "sphere", "cie53", "cie56",
+                                           "cie57", "cie58", "room402", "scene3138"));
 
 TEST(BuiltinAsObj, BadFileName) {
     EXPECT_THROW(write_obj(make_builtin("cube"), "scene.txt"), InputError);
@@ -456,8 +460,8 @@ TEST_P(Assets, FileIsTheBuiltinScene) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, Assets,
-                         ::testing::Values("cornell", "cie53", "cie56", "cie57", "cie58",
-                                           "room402", "scene3138"));
+                         ::testing::Values("cornell", "cie53", "cie56", "cie57", "cie58", "room402",
+                                           "scene3138"));
 
 TEST(Assets, CubeRoom) {
     const Scene s = load_obj(std::string(HEMIRAD_SOURCE_DIR) + "/assets/cube_room.obj");

@@ -12,7 +12,7 @@
 #include "hemirad/gl/context.h"
 
 class SharedGlContextTest : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() {
         try {
             context_ = hemirad::gl::Context::create();
@@ -26,7 +26,7 @@ protected:
         context_->make_current();
     }
 
-private:
+  private:
     inline static std::unique_ptr<hemirad::gl::Context> context_;
     inline static std::string error_;
 };

@@ -29,7 +29,9 @@ SolverOptions small_options(const std::string& ff) {
     return o;
 }
 
-bool same_bits(const glm::vec3& a, const glm::vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(const glm::vec3& a, const glm::vec3& b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 // Every node's floats and every polygon's unshot power, compared bit for bit.
 void expect_identical(Solver& a, Solver& b) {
@@ -38,12 +40,12 @@ void expect_identical(Solver& a, Solver& b) {
     ASSERT_EQ(sa.nodes.size(), sb.nodes.size());
     std::size_t differ = 0;
     for (std::size_t i = 0; i < sa.nodes.size(); ++i)
-        if (!same_bits(sa.nodes[i].H, sb.nodes[i].H) || !same_bits(sa.nodes[i].dB, sb.nodes[i].dB) ||
+        if (!same_bits(sa.nodes[i].H, sb.nodes[i].H) ||
+            !same_bits(sa.nodes[i].dB, sb.nodes[i].dB) ||
             !same_bits(sa.nodes[i].dI, sb.nodes[i].dI))
             ++differ;
     EXPECT_EQ(differ, 0u) << "of " << sa.nodes.size() << " nodes";
-    EXPECT_EQ(0, std::memcmp(sa.unshot.data(), sb.unshot.data(),
-                             sa.unshot.size() * sizeof(dvec3)));
+    EXPECT_EQ(0, std::memcmp(sa.unshot.data(), sb.unshot.data(), sa.unshot.size() * sizeof(dvec3)));
     EXPECT_EQ(sa.dirty, sb.dirty);
     EXPECT_EQ(sa.enclosed, sb.enclosed);
     EXPECT_EQ(sa.provider, sb.provider);
@@ -95,7 +97,9 @@ void resume_matches_uninterrupted(const std::string& ff, long m, long n) {
 
 } // namespace
 
-TEST(SolutionFile, ResumeIsBitIdenticalGpuHybrid) { resume_matches_uninterrupted("hybrid", 9, 30); }
+TEST(SolutionFile, ResumeIsBitIdenticalGpuHybrid) {
+    resume_matches_uninterrupted("hybrid", 9, 30);
+}
 
 TEST(SolutionFile, ResumeIsBitIdenticalCpuReference) {
     resume_matches_uninterrupted("reference", 5, 14);

@@ -19,7 +19,7 @@ namespace {
 
 /// An all-gather between threads: the last to arrive publishes everyone's bytes.
 class ThreadExchange {
-public:
+  public:
     explicit ThreadExchange(int n) : n_(n), slots_(std::size_t(n)) {}
     std::vector<std::vector<std::uint8_t>> gather(int rank, const std::vector<std::uint8_t>& b) {
         std::unique_lock<std::mutex> lock(m_);
@@ -37,7 +37,7 @@ public:
     }
     int size() const { return n_; }
 
-private:
+  private:
     int n_;
     std::mutex m_;
     std::condition_variable cv_;
@@ -47,12 +47,12 @@ private:
 };
 
 class ThreadRank final : public Collective {
-public:
+  public:
     ThreadRank(ThreadExchange& x, int rank) : x_(x), rank_(rank) {}
     int rank() const override { return rank_; }
     int size() const override { return x_.size(); }
-    std::vector<std::vector<std::uint8_t>> all_gather(
-        const std::vector<std::uint8_t>& mine) override {
+    std::vector<std::vector<std::uint8_t>>
+    all_gather(const std::vector<std::uint8_t>& mine) override {
         return x_.gather(rank_, mine);
     }
     bool any(bool flag) override {
@@ -61,7 +61,7 @@ public:
         return false;
     }
 
-private:
+  private:
     ThreadExchange& x_;
     int rank_;
 };

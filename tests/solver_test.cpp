@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "solver/matrix_solver.h"
 #include "hemirad/provider.h"
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"
+#include "solver/matrix_solver.h"
 
 using namespace hemirad;
 

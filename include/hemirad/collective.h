@@ -9,13 +9,13 @@
 namespace hemirad {
 
 class Collective {
-public:
+  public:
     virtual ~Collective() = default;
     virtual int rank() const = 0; ///< 0 .. size()-1
     virtual int size() const = 0;
     /// Every rank's bytes, in rank order; every rank gets the same vectors.
-    virtual std::vector<std::vector<std::uint8_t>> all_gather(
-        const std::vector<std::uint8_t>& mine) = 0;
+    virtual std::vector<std::vector<std::uint8_t>>
+    all_gather(const std::vector<std::uint8_t>& mine) = 0;
     /// True on every rank when `flag` is true on any rank.
     virtual bool any(bool flag) = 0;
     /// Of the last all_gather's time, the part spent moving the bytes once every rank had

@@ -25,7 +25,7 @@ inline std::string num(double x) {
 /// Bad input: a file, an option or scene content that the user can fix. The message names
 /// the file, line and value where they are known. Reported once, at the tool's edge.
 class InputError : public std::runtime_error {
-public:
+  public:
     explicit InputError(const std::string& message) : std::runtime_error(message) {}
     /// "file:line: message" (line 0 means the whole file).
     InputError(const std::string& file, int line, const std::string& message)
@@ -35,7 +35,7 @@ public:
 
 /// A failure of the environment (no GL context, a write that failed) rather than of input.
 class RuntimeError : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
@@ -55,19 +55,19 @@ std::string check_values(const char* a_text, const char* op, const char* b_text,
 
 } // namespace hemirad
 
-#define HEMIRAD_CHECK(cond)                                                                    \
-    do {                                                                                       \
-        if (!(cond)) ::hemirad::detail::check_failed(__FILE__, __LINE__, #cond);               \
+#define HEMIRAD_CHECK(cond)                                                                        \
+    do {                                                                                           \
+        if (!(cond)) ::hemirad::detail::check_failed(__FILE__, __LINE__, #cond);                   \
     } while (0)
 
-#define HEMIRAD_CHECK_OP(a, op, b)                                                             \
-    do {                                                                                       \
-        const auto& hemirad_a_ = (a);                                                          \
-        const auto& hemirad_b_ = (b);                                                          \
-        if (!(hemirad_a_ op hemirad_b_))                                                       \
-            ::hemirad::detail::check_failed(                                                   \
-                __FILE__, __LINE__,                                                            \
-                ::hemirad::detail::check_values(#a, #op, #b, hemirad_a_, hemirad_b_));         \
+#define HEMIRAD_CHECK_OP(a, op, b)                                                                 \
+    do {                                                                                           \
+        const auto& hemirad_a_ = (a);                                                              \
+        const auto& hemirad_b_ = (b);                                                              \
+        if (!(hemirad_a_ op hemirad_b_))                                                           \
+            ::hemirad::detail::check_failed(                                                       \
+                __FILE__, __LINE__,                                                                \
+                ::hemirad::detail::check_values(#a, #op, #b, hemirad_a_, hemirad_b_));             \
     } while (0)
 
 #define HEMIRAD_CHECK_EQ(a, b) HEMIRAD_CHECK_OP(a, ==, b)

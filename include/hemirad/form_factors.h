@@ -16,9 +16,9 @@ namespace hemirad {
 /// The patch that shoots: a node of some polygon's quadtree.
 struct Shooter {
     PatchAddress address;
-    PatchGeometry geometry;   ///< corners, centre, area of the shooting patch
-    dvec3 normal{0.0};        ///< the polygon's unit normal
-    double unshot_power = 0;  ///< sum over RGB of dB*area [W]; providers may adapt to it
+    PatchGeometry geometry;    ///< corners, centre, area of the shooting patch
+    dvec3 normal{0.0};         ///< the polygon's unit normal
+    double unshot_power = 0;   ///< sum over RGB of dB*area [W]; providers may adapt to it
     double power_fraction = 1; ///< unshot_power / total unshot power now (0..1]
 };
 
@@ -38,7 +38,7 @@ struct Discretisation {
 };
 
 class FormFactorProvider {
-public:
+  public:
     virtual ~FormFactorProvider() = default;
     virtual std::string name() const = 0;
     /// Appends to `links` one entry per receiving node visible from the shooter (links is
@@ -63,7 +63,10 @@ public:
     /// used by the matrix solver and by tests. Default: adaptive linking.
     virtual void set_link_at_leaves(bool leaves) { link_at_leaves_ = leaves; }
     /// Timings of the last shoot() in seconds, by phase name (render, readback, reduce, ...).
-    struct Timing { const char* phase; double seconds; };
+    struct Timing {
+        const char* phase;
+        double seconds;
+    };
     virtual std::vector<Timing> last_timings() const { return {}; }
     /// Fraction of the shooter's hemisphere (by form factor) covered by the backs of
     /// polygons in the last shoot(): near 1 when the shooter's centre is enclosed (under a
@@ -96,7 +99,7 @@ public:
                              std::to_string(state.size()) + " values were saved for it");
     }
 
-protected:
+  protected:
     bool link_at_leaves_ = false;
 };
 
@@ -105,11 +108,11 @@ struct CpuProviderOptions {
     /// Adaptive linking: a receiver node is refined while its size / distance to the shooter
     /// exceeds this (about one hemicube pixel at resolution 256: 2/256). Range (0, 1].
     double link_angle = 2.0 / 256.0;
-    int visibility_samples = 4;   ///< reference: shooter points per side for ray visibility (1..16)
-    int gauss_order = 4;          ///< pdm: Gauss-Legendre nodes per side on each patch (1..16)
-    int sr_rays = 1024;           ///< sr: cosine-distributed rays per shooter sample point
-    int sr_points = 16;           ///< sr: random sample points on the shooter
-    std::uint64_t seed = 1;       ///< sr: random seed (reproducible)
+    int visibility_samples = 4; ///< reference: shooter points per side for ray visibility (1..16)
+    int gauss_order = 4;        ///< pdm: Gauss-Legendre nodes per side on each patch (1..16)
+    int sr_rays = 1024;         ///< sr: cosine-distributed rays per shooter sample point
+    int sr_points = 16;         ///< sr: random sample points on the shooter
+    std::uint64_t seed = 1;     ///< sr: random seed (reproducible)
 };
 
 /// CPU providers: "reference" (analytic point-to-polygon + ray-cast visibility),

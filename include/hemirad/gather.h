@@ -45,9 +45,9 @@ class Bvh;
 class Rng;
 
 struct GatherOptions {
-    int rays = 1024;             ///< indirect: cosine rays per point, 16..65536 (typical 256-4096)
-    double emitter_angle = 0.1;  ///< direct: widest emitter cell seen from the point [rad], (0, 1]
-    std::uint64_t seed = 1;      ///< generator seed (reproducible)
+    int rays = 1024;            ///< indirect: cosine rays per point, 16..65536 (typical 256-4096)
+    double emitter_angle = 0.1; ///< direct: widest emitter cell seen from the point [rad], (0, 1]
+    std::uint64_t seed = 1;     ///< generator seed (reproducible)
     /// Direct light: shadow rays to jittered points of the emitter cells (unbiased on average,
     /// for points) or to their centres (deterministic and smooth from point to point, for
     /// images, at the price of steps of one fine cell in a penumbra).
@@ -56,7 +56,7 @@ struct GatherOptions {
     /// visible (fast, for points); off: always sum the fine cells (no step where one coarse
     /// ray first meets an occluder: smooth penumbrae in images).
     bool coarse_test = true;
-    int threads = 0;             ///< worker threads; 0 = all cores
+    int threads = 0; ///< worker threads; 0 = all cores
 };
 
 /// Throws InputError naming the option (--gather-rays, --gather-angle) and the value.

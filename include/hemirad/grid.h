@@ -30,7 +30,7 @@ namespace hemirad {
 inline constexpr long kMaxGridPoints = 4'000'000;
 
 struct GridSpec {
-    std::string group; ///< surface-group name
+    std::string group;  ///< surface-group name
     int nx = 0, ny = 0; ///< points along u and v, each 1..10000
 };
 
@@ -39,23 +39,23 @@ struct GridSpec {
 GridSpec parse_grid_spec(const std::string& text);
 
 struct GridPoint {
-    int i = 0, j = 0;           ///< cell along u, v
-    dvec3 position{0.0};        ///< in the group's plane
-    bool on_surface = false;    ///< false: on no polygon of the group, skipped
-    std::uint32_t polygon = 0;  ///< the polygon it lies on (if on_surface)
-    dvec3 E{0.0};               ///< incident irradiance, RGB [W unit^-2]
+    int i = 0, j = 0;          ///< cell along u, v
+    dvec3 position{0.0};       ///< in the group's plane
+    bool on_surface = false;   ///< false: on no polygon of the group, skipped
+    std::uint32_t polygon = 0; ///< the polygon it lies on (if on_surface)
+    dvec3 E{0.0};              ///< incident irradiance, RGB [W unit^-2]
 };
 
 struct GridResult {
     GridSpec spec;
     dvec3 origin{0.0}, axis_u{0.0}, axis_v{0.0}, normal{0.0}; ///< unit axes
-    double width = 0, height = 0;   ///< of the bounding rectangle [unit]
-    std::vector<GridPoint> points;  ///< nx*ny, row-major: index j*nx + i
+    double width = 0, height = 0;                             ///< of the bounding rectangle [unit]
+    std::vector<GridPoint> points;                            ///< nx*ny, row-major: index j*nx + i
     long evaluated = 0, skipped = 0;
     /// Statistics over the evaluated points. Luminance Y = 0.2126 R + 0.7152 G + 0.0722 B.
     double Y_min = 0, Y_avg = 0, Y_max = 0;
-    double U0 = 0;                  ///< Y_min / Y_avg (0 when Y_avg is 0)
-    double min_over_max = 0;        ///< Y_min / Y_max, "Emin/Emax" (0 when Y_max is 0)
+    double U0 = 0;                            ///< Y_min / Y_avg (0 when Y_avg is 0)
+    double min_over_max = 0;                  ///< Y_min / Y_max, "Emin/Emax" (0 when Y_max is 0)
     dvec3 E_min{0.0}, E_avg{0.0}, E_max{0.0}; ///< per channel
 };
 

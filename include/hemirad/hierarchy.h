@@ -28,7 +28,7 @@ struct HierarchyOptions {
 Discretisation discretise(const Scene& scene, const HierarchyOptions& options);
 
 class Hierarchy {
-public:
+  public:
     /// Per-node state, 40 bytes: float is enough for one shot's contribution, and totals that
     /// must be exact (energy balance) are kept in double by the solver.
     struct Node {
@@ -97,7 +97,7 @@ public:
     void restore_state(const std::vector<Node>& nodes, const std::vector<dvec3>& unshot,
                        const std::vector<std::uint8_t>& dirty);
 
-private:
+  private:
     void pull_path(const PatchAddress& a);
 
     static constexpr std::uint64_t kUntextured = ~std::uint64_t(0);

@@ -16,7 +16,7 @@
 namespace hemirad {
 
 class Json {
-public:
+  public:
     Json() : v_(nullptr) {}
     Json(std::nullptr_t) : v_(nullptr) {}
     Json(bool b) : v_(b) {}
@@ -31,7 +31,11 @@ public:
     Json(std::string s) : v_(std::move(s)) {}
     Json(const glm::dvec3& v) : Json(Json::array({v.x, v.y, v.z})) {}
 
-    static Json object() { Json j; j.v_ = Object{}; return j; }
+    static Json object() {
+        Json j;
+        j.v_ = Object{};
+        return j;
+    }
     static Json array(std::initializer_list<Json> items = {}) {
         Json j;
         j.v_ = Array(items);
@@ -43,7 +47,7 @@ public:
 
     std::string dump(int indent = 2) const;
 
-private:
+  private:
     using Object = std::vector<std::pair<std::string, Json>>;
     using Array = std::vector<Json>;
     void write(std::string& out, int indent, int depth) const;

@@ -34,7 +34,9 @@ constexpr std::uint64_t level_offset(int level) {
     return ((std::uint64_t(1) << (2 * level)) - 1) / 3;
 }
 /// Nodes in a quadtree of depth `depth` (levels 0..depth).
-constexpr std::uint64_t tree_size(int depth) { return level_offset(depth + 1); }
+constexpr std::uint64_t tree_size(int depth) {
+    return level_offset(depth + 1);
+}
 
 /// The geometry of one patch (a sub-quad or sub-triangle of a polygon).
 struct PatchGeometry {

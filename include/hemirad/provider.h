@@ -13,18 +13,18 @@ namespace hemirad {
 
 /// Options of the GPU hemicube provider (paper 002 §2-§3).
 struct GpuProviderOptions {
-    int resolution = 0;          ///< fixed hemicube resolution (pixels per full face side); 0 = adaptive
-    int min_resolution = 64;     ///< adaptive: resolution for the weakest shooters (16..4096)
-    int max_resolution = 256;    ///< adaptive: resolution for the strongest shooters (16..4096)
+    int resolution = 0; ///< fixed hemicube resolution (pixels per full face side); 0 = adaptive
+    int min_resolution = 64;  ///< adaptive: resolution for the weakest shooters (16..4096)
+    int max_resolution = 256; ///< adaptive: resolution for the strongest shooters (16..4096)
     /// Added to the mip level GL chooses (+1 = patches 2x larger). 0.5 makes every linked
     /// patch cover at least about a pixel, so that none falls between pixel centres (at 0,
     /// rows of a closed furnace summed to 0.979 on average; at 0.5, to 0.9998).
     double lod_bias = 0.5;
-    bool builtin_acos = false;   ///< use GLSL acos instead of the 2048-entry lookup table
-    bool atan_angle = false;     ///< use GLSL atan(|a x b|, a.b) (most precise); wins over both
+    bool builtin_acos = false;    ///< use GLSL acos instead of the 2048-entry lookup table
+    bool atan_angle = false;      ///< use GLSL atan(|a x b|, a.b) (most precise); wins over both
     std::string backend = "auto"; ///< GL context backend: auto, egl, osmesa
     bool use_current_context = false; ///< render in the caller's current GL context (viewer)
-    int device = -1;             ///< EGL device index (-1 = default)
+    int device = -1;                  ///< EGL device index (-1 = default)
 };
 
 struct ProviderOptions {

@@ -11,14 +11,13 @@ namespace hemirad {
 
 struct SurfacePoint {
     std::uint32_t polygon = 0;
-    double u = 0, v = 0;   ///< parameters on the polygon (patch.h)
-    double distance = 0;   ///< from the query point to the polygon's plane [unit]
+    double u = 0, v = 0; ///< parameters on the polygon (patch.h)
+    double distance = 0; ///< from the query point to the polygon's plane [unit]
 };
 
 /// Parameters (u,v) of a point in the polygon's plane (inverse of polygon_point). Returns
 /// false if the point lies outside the polygon by more than `slack` in parameter space.
-bool polygon_uv(const Polygon& polygon, const dvec3& p, double& u, double& v,
-                double slack = 1e-6);
+bool polygon_uv(const Polygon& polygon, const dvec3& p, double& u, double& v, double slack = 1e-6);
 
 /// The nearest polygon facing the direction `normal` (normals within 60 degrees), with the
 /// point's projection inside it, at most `max_distance` from its plane (0 = 1e-3 of the

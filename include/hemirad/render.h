@@ -20,17 +20,17 @@
 namespace hemirad {
 
 struct RenderOptions {
-    int width = 512, height = 512;  ///< image size [pixels] (16..8192); render() only
+    int width = 512, height = 512; ///< image size [pixels] (16..8192); render() only
     /// Smooth (default): area-weighted nodal averaging, interpolated (see solution_renderer.cpp).
     /// Flat: every leaf patch shows its own value.
     enum class Shading { Smooth, Flat } shading = Shading::Smooth;
-    bool patch_edges = false;       ///< overlay the leaf patch edges (darkened, ~1 pixel wide)
+    bool patch_edges = false; ///< overlay the leaf patch edges (darkened, ~1 pixel wide)
     /// Add rho * ambient to the radiosity (Cohen et al. 1988), for unconverged solutions;
     /// with Quantity::Irradiance the ambient irradiance itself is added. Display only.
     bool ambient = false;
-    dvec3 ambient_irradiance{0.0};  ///< Solver::ambient_irradiance(), used when ambient is on
+    dvec3 ambient_irradiance{0.0}; ///< Solver::ambient_irradiance(), used when ambient is on
     enum class Quantity { Radiosity, Irradiance } quantity = Quantity::Radiosity;
-    dvec3 background{0.0};          ///< where no surface is (written as is, not scaled)
+    dvec3 background{0.0}; ///< where no surface is (written as is, not scaled)
     /// Draw the backs of polygons (as 0, black: they leave no light) instead of culling them
     /// (default: culled, so that what is behind them shows).
     bool two_sided = false;
@@ -63,8 +63,8 @@ struct RenderOptions {
 /// (row 0 the top); flat shading and patch edges (views of the leaves themselves) are left
 /// as they are.
 struct DiscontinuityStats {
-    std::size_t leaves = 0;  ///< leaves flagged as straddling a discontinuity
-    std::size_t pixels = 0;  ///< pixels re-evaluated
+    std::size_t leaves = 0; ///< leaves flagged as straddling a discontinuity
+    std::size_t pixels = 0; ///< pixels re-evaluated
     double seconds = 0;
 };
 DiscontinuityStats resolve_discontinuities(ImageRGB& image, const Hierarchy& h,
@@ -94,7 +94,7 @@ Camera frame_scene(const Scene& scene);
 /// (one float RGB per welded vertex, or per leaf in flat mode), so the viewer may call draw()
 /// every frame.
 class SolutionRenderer {
-public:
+  public:
     explicit SolutionRenderer(const Scene& scene);
     ~SolutionRenderer();
     SolutionRenderer(const SolutionRenderer&) = delete;
@@ -123,7 +123,7 @@ public:
     };
     Stats stats() const;
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -48,8 +48,8 @@ std::string probe_points_csv(const std::vector<Probe>& probes);
 std::vector<Probe> read_probes(const std::string& path);
 /// Irradiance at one probe: E [W unit^-2], RGB, and the polygon the point lies on.
 struct ProbeValue {
-    std::optional<dvec3> E;                ///< empty: on no surface, and no gather
-    std::optional<std::uint32_t> polygon;  ///< empty: on no surface (find_surface)
+    std::optional<dvec3> E;               ///< empty: on no surface, and no gather
+    std::optional<std::uint32_t> polygon; ///< empty: on no surface (find_surface)
 };
 /// The values of probes_csv(): without a gather E is interpolated between the leaves around
 /// the point (nothing for a point on no surface); with a final gather (gather.h), point k is

@@ -20,8 +20,8 @@ using dvec3 = glm::dvec3;
 
 struct Material {
     std::string name;
-    dvec3 rho{0.0};        ///< diffuse reflectance per RGB channel, each in [0, 1)
-    dvec3 Ke{0.0};         ///< emitted radiance per channel [W sr^-1 unit^-2]; exitance = pi*Ke
+    dvec3 rho{0.0}; ///< diffuse reflectance per RGB channel, each in [0, 1)
+    dvec3 Ke{0.0};  ///< emitted radiance per channel [W sr^-1 unit^-2]; exitance = pi*Ke
     /// Index into Scene::textures, or -1: the reflectance at a point is then rho times the
     /// texel there (rho is the multiplier: OBJ Kd, glTF baseColorFactor); a leaf patch's is rho
     /// times the texels' mean over the leaf (patch_reflectance(), patch.h).
@@ -31,10 +31,10 @@ struct Material {
 
 /// A planar convex polygon: 3 or 4 corners, counter-clockwise seen from the front (normal side).
 struct Polygon {
-    std::array<dvec3, 4> v{};  ///< corners; v[3] unused for triangles
-    int count = 0;             ///< 3 or 4
-    dvec3 normal{0.0};         ///< unit normal, front side
-    double area = 0.0;         ///< [unit^2]
+    std::array<dvec3, 4> v{};   ///< corners; v[3] unused for triangles
+    int count = 0;              ///< 3 or 4
+    dvec3 normal{0.0};          ///< unit normal, front side
+    double area = 0.0;          ///< [unit^2]
     std::uint32_t material = 0; ///< index into Scene::materials
     std::uint32_t group = 0;    ///< index into Scene::groups
     bool is_triangle() const { return count == 3; }
@@ -55,15 +55,18 @@ struct Camera {
 
 struct Bounds {
     dvec3 lo{1e300}, hi{-1e300};
-    void extend(const dvec3& p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+    void extend(const dvec3& p) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
     double diagonal() const { return glm::length(hi - lo); }
 };
 
 struct Scene {
-    std::string source;                ///< file path or "builtin:NAME"
+    std::string source; ///< file path or "builtin:NAME"
     std::vector<Polygon> polygons;
     std::vector<Material> materials;
-    std::vector<std::string> groups;   ///< surface-group names (OBJ g/o, else material name)
+    std::vector<std::string> groups; ///< surface-group names (OBJ g/o, else material name)
     /// cameras[0] is the default view; without one, default_camera() (render.h) frames the scene
     std::vector<Camera> cameras;
     /// Point-source luminaires (photometry.h; from a SCENE.json file): shot by the solver like

@@ -9,9 +9,9 @@ namespace hemirad {
 
 /// Options of the built-in scenes (ignored where they do not apply).
 struct BuiltinOptions {
-    int subdiv = 1;         ///< cube/furnace: each face split into subdiv x subdiv quads (1..1000)
-    double rho = -1.0;      ///< reflectance of every surface; <0 = the scene's own default
-    int sphere_rings = 16;  ///< sphere: latitude rings (>= 4); longitude segments = 2x rings
+    int subdiv = 1;        ///< cube/furnace: each face split into subdiv x subdiv quads (1..1000)
+    double rho = -1.0;     ///< reflectance of every surface; <0 = the scene's own default
+    int sphere_rings = 16; ///< sphere: latitude rings (>= 4); longitude segments = 2x rings
 };
 
 /// Options of OBJ/MTL files.
@@ -96,9 +96,9 @@ ObjText scene_obj_text(const Scene& scene, const std::string& mtl_name);
 /// file cannot be written.
 std::string write_obj(const Scene& scene, const std::string& obj_path);
 
-/// Built-in scenes: "cornell", "cube", "furnace", "sphere", "room" (make_light_room); the CIE 171 rooms "cie53", "cie56",
-/// "cie57", "cie58" (options.rho, default 0.5) and paper 002's benchmark rooms "room402",
-/// "scene3138" (validation_scenes.h). Throws InputError for other names.
+/// Built-in scenes: "cornell", "cube", "furnace", "sphere", "room" (make_light_room); the CIE 171
+/// rooms "cie53", "cie56", "cie57", "cie58" (options.rho, default 0.5) and paper 002's benchmark
+/// rooms "room402", "scene3138" (validation_scenes.h). Throws InputError for other names.
 Scene make_builtin(const std::string& name, const BuiltinOptions& options = {});
 bool is_builtin(const std::string& name);
 const char* builtin_names(); ///< "cornell, cube, furnace, sphere, room, cie53, ..., scene3138"

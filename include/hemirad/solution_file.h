@@ -43,13 +43,13 @@ using SolutionOption = std::pair<std::string, std::string>;
 
 /// The options of `o` that affect results: --ff, the hierarchy options, the shooter options
 /// and the provider options. A new option of SolverOptions, ProviderOptions or
-/// HierarchyOptions that changes results must be added here and to apply_solution_option(). Not included, so free to change on resume: --tolerance,
+/// HierarchyOptions that changes results must be added here and to apply_solution_option(). Not
+/// included, so free to change on resume: --tolerance,
 /// --max-shots, --time-limit (stop criteria), --backend and --device (where it runs).
 std::vector<SolutionOption> solution_options(const SolverOptions& o);
 /// Sets the option `name` of `o` from its saved text. Throws InputError for an unknown name
 /// or a malformed value (`file` names the solution file in the message).
-void apply_solution_option(SolverOptions& o, const SolutionOption& option,
-                           const std::string& file);
+void apply_solution_option(SolverOptions& o, const SolutionOption& option, const std::string& file);
 
 struct SolutionFile {
     std::uint64_t scene_hash = 0;

@@ -22,12 +22,12 @@
 namespace hemirad {
 
 struct SolverOptions {
-    std::string ff = "hybrid";     ///< form-factor method (see provider.h)
-    ProviderOptions provider;      ///< options of the form-factor providers
-    HierarchyOptions hierarchy;    ///< patch size and depth
-    double tolerance = 0.01;       ///< stop when error bound / emitted power <= this (0, 1)
-    long max_shots = 100000;       ///< stop after this many shots (>= 0)
-    double time_limit = 0;         ///< stop after this many seconds (0 = none)
+    std::string ff = "hybrid";  ///< form-factor method (see provider.h)
+    ProviderOptions provider;   ///< options of the form-factor providers
+    HierarchyOptions hierarchy; ///< patch size and depth
+    double tolerance = 0.01;    ///< stop when error bound / emitted power <= this (0, 1)
+    long max_shots = 100000;    ///< stop after this many shots (>= 0)
+    double time_limit = 0;      ///< stop after this many seconds (0 = none)
     /// Shooter descent (paper 002 §4.2): descend into the child with most unshot power while
     /// its unshot power is at least this fraction of the scene's total unshot power... (0,1].
     double shooter_power_fraction = 1.0 / 16.0;
@@ -37,7 +37,7 @@ struct SolverOptions {
     /// from one point, so a large shooter's visibility is that of its centre only.
     /// 0 = no limit.
     double shooter_max_size = 0;
-    bool flat = false;             ///< always shoot from leaves (no hierarchy), for comparison
+    bool flat = false; ///< always shoot from leaves (no hierarchy), for comparison
     /// Rescale a shot's form factors when their row sum exceeds 1 (paper 000: rows above 1
     /// create energy; in a closed cube they reached 1.0018 and put 3 % on a 5 % indirect).
     bool row_guard = true;
@@ -60,19 +60,19 @@ struct SolverOptions {
 
 /// One shot, as reported after it (also one line of --log).
 struct ShotRecord {
-    long shot = 0;              ///< 1-based
+    long shot = 0; ///< 1-based
     /// The luminaire shot (index into Scene::luminaires), or -1 when a patch shot: then
     /// `shooter` is the patch (for a luminaire it is {kNoPolygon-like 0xFFFFFFFF, 0, 0}).
     int luminaire = -1;
     PatchAddress shooter;
-    double shooter_power = 0;   ///< unshot power shot, sum over RGB [W]
+    double shooter_power = 0; ///< unshot power shot, sum over RGB [W]
     std::size_t links = 0;
-    int refined = 0;            ///< shooters replaced by their children before this shot
-                                ///< (enclosed centre, or parallax above the limit)
-    double parallax = -1;       ///< the shooter's parallax fraction (-1: not measured, a leaf)
-    double row_sum = 0;         ///< sum_j F(j->S) A_j / A_S before any guard (1 if closed);
-                                ///< for a luminaire, the fraction of its power received
-    bool row_guarded = false;   ///< the guard rescaled this row
+    int refined = 0;          ///< shooters replaced by their children before this shot
+                              ///< (enclosed centre, or parallax above the limit)
+    double parallax = -1;     ///< the shooter's parallax fraction (-1: not measured, a leaf)
+    double row_sum = 0;       ///< sum_j F(j->S) A_j / A_S before any guard (1 if closed);
+                              ///< for a luminaire, the fraction of its power received
+    bool row_guarded = false; ///< the guard rescaled this row
     double t_select = 0, t_push_pull = 0, t_form_factors = 0, t_update = 0; ///< [s]
     std::vector<FormFactorProvider::Timing> ff_phases; ///< the provider's own split
     dvec3 unshot{0.0};          ///< total unshot power after the shot, RGB [W]
@@ -90,7 +90,7 @@ enum class StopReason { Running, Converged, MaxShots, TimeLimit, NothingToShoot 
 const char* to_string(StopReason r);
 
 class Solver {
-public:
+  public:
     /// Builds the hierarchy and the provider named by options.ff. Throws InputError for bad
     /// options, RuntimeError if the provider cannot start (no GL context).
     Solver(const Scene& scene, const SolverOptions& options);
@@ -112,9 +112,9 @@ public:
     /// What the parallel rounds cost so far (on this rank; zero when shooting alone).
     struct ParallelStats {
         long rounds = 0;
-        double bytes = 0;        ///< gathered per rank, all rounds together
-        double max_bytes = 0;    ///< the largest round
-        double seconds = 0;      ///< in the collectives (including waiting for the others)
+        double bytes = 0;            ///< gathered per rank, all rounds together
+        double max_bytes = 0;        ///< the largest round
+        double seconds = 0;          ///< in the collectives (including waiting for the others)
         double transfer_seconds = 0; ///< of which moving the bytes (Collective)
     };
     const ParallelStats& parallel_stats() const { return parallel_; }
@@ -142,7 +142,10 @@ public:
     dvec3 emitted_power() const { return emitted_; }
     dvec3 absorbed_power() const { return absorbed_; } ///< (1-rho)*received, summed [W]
     dvec3 escaped_power() const { return escaped_; }   ///< shot power that hit nothing [W]
-    struct RowSumStats { double min = 0, mean = 0, max = 0; long guarded = 0; };
+    struct RowSumStats {
+        double min = 0, mean = 0, max = 0;
+        long guarded = 0;
+    };
     RowSumStats row_sums() const;
 
     /// The solution: push-pulls every polygon so that node values are complete.
@@ -174,19 +177,19 @@ public:
     /// steps and before solution() (whose push-pull would change the float sums' order).
     struct State {
         Counters counters;
-        std::vector<Hierarchy::Node> nodes;   ///< every node, in Hierarchy order
-        std::vector<dvec3> unshot;            ///< per polygon, unshot power [W]
-        std::vector<std::uint8_t> dirty;      ///< per polygon, needs a push-pull
-        std::vector<std::uint8_t> enclosed;   ///< per node, a view code (see Solver::view_)
-        std::vector<double> provider;         ///< FormFactorProvider::save_state()
-        std::vector<dvec3> luminaires;        ///< per luminaire, unshot power [W]
+        std::vector<Hierarchy::Node> nodes; ///< every node, in Hierarchy order
+        std::vector<dvec3> unshot;          ///< per polygon, unshot power [W]
+        std::vector<std::uint8_t> dirty;    ///< per polygon, needs a push-pull
+        std::vector<std::uint8_t> enclosed; ///< per node, a view code (see Solver::view_)
+        std::vector<double> provider;       ///< FormFactorProvider::save_state()
+        std::vector<dvec3> luminaires;      ///< per luminaire, unshot power [W]
     };
     State save_state() const;
     /// Restores a state saved by a solver with the same scene and options. Throws InputError
     /// if the sizes do not fit this solver's hierarchy or provider, or a value is not finite.
     void restore_state(const State& state);
 
-private:
+  private:
     void init();
     PatchAddress select_shooter(std::uint32_t polygon);
     void shoot_luminaire(std::size_t k, ShotRecord& rec);

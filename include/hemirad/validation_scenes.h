@@ -70,10 +70,10 @@ Scene make_light_room(double rho = 0.5, double side = 1.0, double exitance = 1.0
 ///   room402:  sets = 2,  lights = 6, cabinets = 7   -> 402 polygons
 ///   scene3138: sets = 17, lights = 6, cabinets = 28 -> 3138 polygons
 struct BenchRoomOptions {
-    int sets = 2;        ///< table-and-chairs sets (>= 0)
-    int lights = 6;      ///< ceiling lights (>= 1)
-    int cabinets = 7;    ///< extra boxes along the walls (>= 0)
-    double rho = 0.6;    ///< reflectance of walls, ceiling and furniture (floor 0.3)
+    int sets = 2;     ///< table-and-chairs sets (>= 0)
+    int lights = 6;   ///< ceiling lights (>= 1)
+    int cabinets = 7; ///< extra boxes along the walls (>= 0)
+    double rho = 0.6; ///< reflectance of walls, ceiling and furniture (floor 0.3)
 };
 Scene make_bench_room(const BenchRoomOptions& options = {});
 /// Polygon count that make_bench_room(options) produces.

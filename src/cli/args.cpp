@@ -33,7 +33,8 @@ std::string shortest(double x) {
 } // namespace
 
 ArgParser::ArgParser(std::string program, std::string usage, std::string description)
-    : program_(std::move(program)), usage_(std::move(usage)), description_(std::move(description)) {}
+    : program_(std::move(program)), usage_(std::move(usage)), description_(std::move(description)) {
+}
 
 void ArgParser::section(const std::string& title) {
     Opt o;
@@ -83,7 +84,9 @@ void ArgParser::option(const std::string& name, double* out, const std::string& 
 void ArgParser::option(const std::string& name, long* out, const std::string& metavar,
                        const std::string& help) {
     Opt o{name, metavar, help, std::to_string(*out), nullptr};
-    o.set = [out, name](const std::string& v) { *out = parse_integer(name, v, LONG_MIN, LONG_MAX); };
+    o.set = [out, name](const std::string& v) {
+        *out = parse_integer(name, v, LONG_MIN, LONG_MAX);
+    };
     opts_.push_back(o);
 }
 

@@ -9,7 +9,7 @@
 namespace hemirad {
 
 class ArgParser {
-public:
+  public:
     ArgParser(std::string program, std::string usage, std::string description);
 
     void flag(const std::string& name, bool* out, const std::string& help);
@@ -43,7 +43,7 @@ public:
     bool given(const std::string& name) const;
     std::string help() const;
 
-private:
+  private:
     struct Opt {
         std::string name, metavar, help, default_text;
         std::function<void(const std::string&)> set; // null for flags

@@ -19,7 +19,9 @@ double half_area(const dvec3& lo, const dvec3& hi) {
     return e.x * e.y + e.y * e.z + e.z * e.x;
 }
 
-double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+double cross2(double ax, double ay, double bx, double by) {
+    return ax * by - ay * bx;
+}
 
 // Moller-Trumbore against the triangle v0, v0+ea, v0+eb: barycentrics (a, b) along ea, eb.
 // Edges are included with a tolerance of 1e-12 so that rays through a shared edge do not leak.

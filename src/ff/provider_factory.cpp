@@ -11,7 +11,9 @@ std::unique_ptr<FormFactorProvider> make_hemicube_provider(const std::string& mo
                                                            const Discretisation& disc,
                                                            const GpuProviderOptions& options);
 
-const char* provider_names() { return "hybrid, analytic, hemicube, reference, pdm, sr"; }
+const char* provider_names() {
+    return "hybrid, analytic, hemicube, reference, pdm, sr";
+}
 
 bool is_gpu_provider(const std::string& name) {
     return name == "hybrid" || name == "analytic" || name == "hemicube";
@@ -23,8 +25,8 @@ std::unique_ptr<FormFactorProvider> make_provider(const std::string& name, const
     if (is_gpu_provider(name)) return make_hemicube_provider(name, scene, disc, options.gpu);
     if (name == "reference" || name == "pdm" || name == "sr")
         return make_cpu_provider(name, scene, disc, options.cpu);
-    throw InputError("unknown form-factor method '" + name + "' (expected one of: " +
-                     provider_names() + ")");
+    throw InputError("unknown form-factor method '" + name +
+                     "' (expected one of: " + provider_names() + ")");
 }
 
 } // namespace hemirad

@@ -14,9 +14,12 @@ constexpr int kRequiredMinor = 5;
 
 const char* backend_label(Backend backend) {
     switch (backend) {
-    case Backend::Egl: return "EGL";
-    case Backend::OSMesa: return "OSMesa";
-    case Backend::Auto: break;
+    case Backend::Egl:
+        return "EGL";
+    case Backend::OSMesa:
+        return "OSMesa";
+    case Backend::Auto:
+        break;
     }
     return "auto";
 }
@@ -50,8 +53,8 @@ std::unique_ptr<Context> Context::create_backend(Backend backend, const ContextO
     const bool core = (profile & GL_CONTEXT_CORE_PROFILE_BIT) != 0;
     if (c.major_ * 10 + c.minor_ < kRequiredMajor * 10 + kRequiredMinor || !core)
         throw RuntimeError("got OpenGL " + std::to_string(c.major_) + "." +
-                           std::to_string(c.minor_) + (core ? " core" : " (not core)") +
-                           " (\"" + c.version_ + "\", " + c.renderer_ + "), hemirad needs " +
+                           std::to_string(c.minor_) + (core ? " core" : " (not core)") + " (\"" +
+                           c.version_ + "\", " + c.renderer_ + "), hemirad needs " +
                            std::to_string(kRequiredMajor) + "." + std::to_string(kRequiredMinor) +
                            " core");
     if (debug) detail::enable_debug_output();
@@ -86,7 +89,9 @@ std::unique_ptr<Context> Context::create(const ContextOptions& options) {
 
 Context::~Context() = default;
 
-std::vector<std::string> Context::egl_devices() { return detail::egl_device_names(); }
+std::vector<std::string> Context::egl_devices() {
+    return detail::egl_device_names();
+}
 
 Backend parse_backend(const std::string& name) {
     if (name == "auto") return Backend::Auto;

@@ -11,44 +11,60 @@ namespace {
 
 const char* source_name(GLenum source) {
     switch (source) {
-    case GL_DEBUG_SOURCE_API: return "api";
-    case GL_DEBUG_SOURCE_WINDOW_SYSTEM: return "window system";
-    case GL_DEBUG_SOURCE_SHADER_COMPILER: return "shader compiler";
-    case GL_DEBUG_SOURCE_THIRD_PARTY: return "third party";
-    case GL_DEBUG_SOURCE_APPLICATION: return "application";
-    default: return "other";
+    case GL_DEBUG_SOURCE_API:
+        return "api";
+    case GL_DEBUG_SOURCE_WINDOW_SYSTEM:
+        return "window system";
+    case GL_DEBUG_SOURCE_SHADER_COMPILER:
+        return "shader compiler";
+    case GL_DEBUG_SOURCE_THIRD_PARTY:
+        return "third party";
+    case GL_DEBUG_SOURCE_APPLICATION:
+        return "application";
+    default:
+        return "other";
     }
 }
 
 const char* type_name(GLenum type) {
     switch (type) {
-    case GL_DEBUG_TYPE_ERROR: return "error";
-    case GL_DEBUG_TYPE_DEPRECATED_BEHAVIOR: return "deprecated";
-    case GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR: return "undefined behaviour";
-    case GL_DEBUG_TYPE_PORTABILITY: return "portability";
-    case GL_DEBUG_TYPE_PERFORMANCE: return "performance";
-    case GL_DEBUG_TYPE_MARKER: return "marker";
-    default: return "other";
+    case GL_DEBUG_TYPE_ERROR:
+        return "error";
+    case GL_DEBUG_TYPE_DEPRECATED_BEHAVIOR:
+        return "deprecated";
+    case GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR:
+        return "undefined behaviour";
+    case GL_DEBUG_TYPE_PORTABILITY:
+        return "portability";
+    case GL_DEBUG_TYPE_PERFORMANCE:
+        return "performance";
+    case GL_DEBUG_TYPE_MARKER:
+        return "marker";
+    default:
+        return "other";
     }
 }
 
 const char* severity_name(GLenum severity) {
     switch (severity) {
-    case GL_DEBUG_SEVERITY_HIGH: return "high";
-    case GL_DEBUG_SEVERITY_MEDIUM: return "medium";
-    case GL_DEBUG_SEVERITY_LOW: return "low";
-    default: return "notification";
+    case GL_DEBUG_SEVERITY_HIGH:
+        return "high";
+    case GL_DEBUG_SEVERITY_MEDIUM:
+        return "medium";
+    case GL_DEBUG_SEVERITY_LOW:
+        return "low";
+    default:
+        return "notification";
     }
 }
 
-void GLAD_API_PTR on_message(GLenum source, GLenum type, GLuint id, GLenum severity,
-                             GLsizei length, const GLchar* message, const void* user) {
+void GLAD_API_PTR on_message(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
+                             const GLchar* message, const void* user) {
     if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
     std::fprintf(stderr, "GL %s (%s, %s, severity %s, id %u): %.*s\n",
                  type == GL_DEBUG_TYPE_ERROR ? "error" : "warning", type_name(type),
                  source_name(source), severity_name(severity), id,
-                 length < 0 ? static_cast<int>(std::strlen(message))
-                            : static_cast<int>(length),
+                 length < 0 ? static_cast<int>(std::strlen(message)) : static_cast<int>(length),
                  message);
 }
 

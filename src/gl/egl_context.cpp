@@ -25,22 +25,38 @@ constexpr EGLint kDrmRenderNodeFile = 0x3377; // EGL_DRM_RENDER_NODE_FILE_EXT
 
 const char* egl_error_name(EGLint error) {
     switch (error) {
-    case EGL_SUCCESS: return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CURRENT_SURFACE: return "EGL_BAD_CURRENT_SURFACE";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    case EGL_BAD_NATIVE_PIXMAP: return "EGL_BAD_NATIVE_PIXMAP";
-    case EGL_BAD_NATIVE_WINDOW: return "EGL_BAD_NATIVE_WINDOW";
-    case EGL_CONTEXT_LOST: return "EGL_CONTEXT_LOST";
-    default: return "unknown EGL error";
+    case EGL_SUCCESS:
+        return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED:
+        return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+        return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+        return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+        return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONTEXT:
+        return "EGL_BAD_CONTEXT";
+    case EGL_BAD_CONFIG:
+        return "EGL_BAD_CONFIG";
+    case EGL_BAD_CURRENT_SURFACE:
+        return "EGL_BAD_CURRENT_SURFACE";
+    case EGL_BAD_DISPLAY:
+        return "EGL_BAD_DISPLAY";
+    case EGL_BAD_SURFACE:
+        return "EGL_BAD_SURFACE";
+    case EGL_BAD_MATCH:
+        return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+        return "EGL_BAD_PARAMETER";
+    case EGL_BAD_NATIVE_PIXMAP:
+        return "EGL_BAD_NATIVE_PIXMAP";
+    case EGL_BAD_NATIVE_WINDOW:
+        return "EGL_BAD_NATIVE_WINDOW";
+    case EGL_CONTEXT_LOST:
+        return "EGL_CONTEXT_LOST";
+    default:
+        return "unknown EGL error";
     }
 }
 
@@ -77,9 +93,8 @@ std::vector<EGLDeviceEXT> query_devices() {
 }
 
 std::string device_name(EGLDeviceEXT device, std::size_t index) {
-    const char* extensions = GLAD_EGL_EXT_device_query
-                                 ? eglQueryDeviceStringEXT(device, EGL_EXTENSIONS)
-                                 : nullptr;
+    const char* extensions =
+        GLAD_EGL_EXT_device_query ? eglQueryDeviceStringEXT(device, EGL_EXTENSIONS) : nullptr;
     const char* file = nullptr;
     if (has_extension(extensions, "EGL_EXT_device_drm_render_node"))
         file = eglQueryDeviceStringEXT(device, kDrmRenderNodeFile);
@@ -113,13 +128,13 @@ EGLDisplay open_display(int device) {
     EGLDisplay display =
         eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[device], nullptr);
     if (display == EGL_NO_DISPLAY)
-        fail("eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device " +
-             std::to_string(device) + ")");
+        fail("eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device " + std::to_string(device) +
+             ")");
     return display;
 }
 
 class EglContext final : public Context {
-public:
+  public:
     static std::unique_ptr<Context> create(const ContextOptions& options, bool debug);
 
     ~EglContext() override {
@@ -140,7 +155,7 @@ public:
             fail("eglMakeCurrent");
     }
 
-private:
+  private:
     explicit EglContext(EGLDisplay display) : display_(display) {}
 
     EGLDisplay display_;
@@ -167,20 +182,22 @@ std::unique_ptr<Context> EglContext::create(const ContextOptions& options, bool 
 
     // No surface is ever made: any config that renders OpenGL will do.
     const EGLint config_attributes[] = {
-        EGL_SURFACE_TYPE, 0, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-        EGL_CONFORMANT,   EGL_OPENGL_BIT, EGL_NONE};
+        EGL_SURFACE_TYPE, 0,       EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_CONFORMANT,
+        EGL_OPENGL_BIT,   EGL_NONE};
     EGLConfig config = nullptr;
     EGLint configs = 0;
-    if (!eglChooseConfig(display, config_attributes, &config, 1, &configs))
-        fail("eglChooseConfig");
+    if (!eglChooseConfig(display, config_attributes, &config, 1, &configs)) fail("eglChooseConfig");
     if (configs == 0) throw RuntimeError("eglChooseConfig found no config for OpenGL");
 
-    const EGLint context_attributes[] = {
-        EGL_CONTEXT_MAJOR_VERSION_KHR, 4,
-        EGL_CONTEXT_MINOR_VERSION_KHR, 5,
-        EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT_KHR,
-        EGL_CONTEXT_FLAGS_KHR, debug ? EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR : 0,
-        EGL_NONE};
+    const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION_KHR,
+                                         4,
+                                         EGL_CONTEXT_MINOR_VERSION_KHR,
+                                         5,
+                                         EGL_CONTEXT_OPENGL_PROFILE_MASK_KHR,
+                                         EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT_KHR,
+                                         EGL_CONTEXT_FLAGS_KHR,
+                                         debug ? EGL_CONTEXT_OPENGL_DEBUG_BIT_KHR : 0,
+                                         EGL_NONE};
     c->context_ = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attributes);
     if (c->context_ == EGL_NO_CONTEXT) fail("eglCreateContext(OpenGL 4.5 core)");
     c->make_current();

@@ -11,17 +11,24 @@ namespace {
 
 const char* framebuffer_status_name(GLenum status) {
     switch (status) {
-    case GL_FRAMEBUFFER_UNDEFINED: return "GL_FRAMEBUFFER_UNDEFINED";
-    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
+    case GL_FRAMEBUFFER_UNDEFINED:
+        return "GL_FRAMEBUFFER_UNDEFINED";
+    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT:
+        return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
     case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT:
         return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
-    case GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER";
-    case GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER";
-    case GL_FRAMEBUFFER_UNSUPPORTED: return "GL_FRAMEBUFFER_UNSUPPORTED";
-    case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
+    case GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER:
+        return "GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER";
+    case GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER:
+        return "GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER";
+    case GL_FRAMEBUFFER_UNSUPPORTED:
+        return "GL_FRAMEBUFFER_UNSUPPORTED";
+    case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE:
+        return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
     case GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS:
         return "GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS";
-    default: return "unknown status";
+    default:
+        return "unknown status";
     }
 }
 
@@ -32,7 +39,9 @@ Buffer Buffer::create() {
     glCreateBuffers(1, &id);
     return Buffer(id);
 }
-void Buffer::destroy(GLuint id) noexcept { glDeleteBuffers(1, &id); }
+void Buffer::destroy(GLuint id) noexcept {
+    glDeleteBuffers(1, &id);
+}
 void Buffer::storage(GLsizeiptr size, const void* data, GLbitfield flags) {
     glNamedBufferStorage(id(), size, data, flags);
 }
@@ -42,7 +51,9 @@ Texture Texture::create(GLenum target) {
     glCreateTextures(target, 1, &id);
     return Texture(id, target);
 }
-void Texture::destroy(GLuint id) noexcept { glDeleteTextures(1, &id); }
+void Texture::destroy(GLuint id) noexcept {
+    glDeleteTextures(1, &id);
+}
 void Texture::storage_2d(GLsizei levels, GLenum internal_format, GLsizei width, GLsizei height) {
     glTextureStorage2D(id(), levels, internal_format, width, height);
 }
@@ -52,7 +63,9 @@ Renderbuffer Renderbuffer::create() {
     glCreateRenderbuffers(1, &id);
     return Renderbuffer(id);
 }
-void Renderbuffer::destroy(GLuint id) noexcept { glDeleteRenderbuffers(1, &id); }
+void Renderbuffer::destroy(GLuint id) noexcept {
+    glDeleteRenderbuffers(1, &id);
+}
 void Renderbuffer::storage(GLenum internal_format, GLsizei width, GLsizei height) {
     glNamedRenderbufferStorage(id(), internal_format, width, height);
 }
@@ -62,7 +75,9 @@ Framebuffer Framebuffer::create() {
     glCreateFramebuffers(1, &id);
     return Framebuffer(id);
 }
-void Framebuffer::destroy(GLuint id) noexcept { glDeleteFramebuffers(1, &id); }
+void Framebuffer::destroy(GLuint id) noexcept {
+    glDeleteFramebuffers(1, &id);
+}
 void Framebuffer::attach(GLenum attachment, const Texture& texture, GLint level) {
     glNamedFramebufferTexture(id(), attachment, texture.id(), level);
 }
@@ -74,8 +89,8 @@ void Framebuffer::check_complete() const {
     if (status == GL_FRAMEBUFFER_COMPLETE) return;
     char code[16];
     std::snprintf(code, sizeof code, "0x%04X", status);
-    throw RuntimeError("framebuffer " + std::to_string(id()) + " is incomplete: " +
-                       framebuffer_status_name(status) + " (" + code + ")");
+    throw RuntimeError("framebuffer " + std::to_string(id()) +
+                       " is incomplete: " + framebuffer_status_name(status) + " (" + code + ")");
 }
 
 VertexArray VertexArray::create() {
@@ -83,7 +98,9 @@ VertexArray VertexArray::create() {
     glCreateVertexArrays(1, &id);
     return VertexArray(id);
 }
-void VertexArray::destroy(GLuint id) noexcept { glDeleteVertexArrays(1, &id); }
+void VertexArray::destroy(GLuint id) noexcept {
+    glDeleteVertexArrays(1, &id);
+}
 void VertexArray::vertex_buffer(GLuint binding, const Buffer& buffer, GLintptr offset,
                                 GLsizei stride) {
     glVertexArrayVertexBuffer(id(), binding, buffer.id(), offset, stride);
@@ -95,10 +112,18 @@ void VertexArray::attribute(GLuint location, GLuint binding, GLint components, G
     glVertexArrayAttribBinding(id(), location, binding);
 }
 
-Shader Shader::create(GLenum stage) { return Shader(glCreateShader(stage)); }
-void Shader::destroy(GLuint id) noexcept { glDeleteShader(id); }
+Shader Shader::create(GLenum stage) {
+    return Shader(glCreateShader(stage));
+}
+void Shader::destroy(GLuint id) noexcept {
+    glDeleteShader(id);
+}
 
-Program Program::create() { return Program(glCreateProgram()); }
-void Program::destroy(GLuint id) noexcept { glDeleteProgram(id); }
+Program Program::create() {
+    return Program(glCreateProgram());
+}
+void Program::destroy(GLuint id) noexcept {
+    glDeleteProgram(id);
+}
 
 } // namespace hemirad::gl

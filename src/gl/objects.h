@@ -14,16 +14,15 @@ namespace hemirad::gl {
 namespace detail {
 
 /// Owns one GL name. `Derived::destroy(GLuint)` deletes it.
-template <class Derived>
-class Object {
-public:
+template <class Derived> class Object {
+  public:
     Object(const Object&) = delete;
     Object& operator=(const Object&) = delete;
 
     GLuint id() const noexcept { return id_; }
     explicit operator bool() const noexcept { return id_ != 0; }
 
-protected:
+  protected:
     Object() noexcept = default;
     explicit Object(GLuint id) noexcept : id_(id) {}
     Object(Object&& other) noexcept : id_(std::exchange(other.id_, 0)) {}
@@ -36,7 +35,7 @@ protected:
     }
     ~Object() { reset(); }
 
-private:
+  private:
     void reset() noexcept {
         if (id_ != 0) Derived::destroy(id_);
         id_ = 0;
@@ -48,7 +47,7 @@ private:
 } // namespace detail
 
 class Buffer : public detail::Object<Buffer> {
-public:
+  public:
     Buffer() noexcept = default;
     static Buffer create();
 
@@ -56,14 +55,14 @@ public:
     /// glNamedBufferStorage (0: written only by GL and by this call).
     void storage(GLsizeiptr size, const void* data, GLbitfield flags = 0);
 
-private:
+  private:
     friend class detail::Object<Buffer>;
     explicit Buffer(GLuint id) noexcept : Object(id) {}
     static void destroy(GLuint id) noexcept;
 };
 
 class Texture : public detail::Object<Texture> {
-public:
+  public:
     Texture() noexcept = default;
     static Texture create(GLenum target);
 
@@ -72,7 +71,7 @@ public:
     /// width x height [texels].
     void storage_2d(GLsizei levels, GLenum internal_format, GLsizei width, GLsizei height);
 
-private:
+  private:
     friend class detail::Object<Texture>;
     Texture(GLuint id, GLenum target) noexcept : Object(id), target_(target) {}
     static void destroy(GLuint id) noexcept;
@@ -81,21 +80,21 @@ private:
 };
 
 class Renderbuffer : public detail::Object<Renderbuffer> {
-public:
+  public:
     Renderbuffer() noexcept = default;
     static Renderbuffer create();
 
     /// width x height [pixels], single sample.
     void storage(GLenum internal_format, GLsizei width, GLsizei height);
 
-private:
+  private:
     friend class detail::Object<Renderbuffer>;
     explicit Renderbuffer(GLuint id) noexcept : Object(id) {}
     static void destroy(GLuint id) noexcept;
 };
 
 class Framebuffer : public detail::Object<Framebuffer> {
-public:
+  public:
     Framebuffer() noexcept = default;
     static Framebuffer create();
 
@@ -105,14 +104,14 @@ public:
     /// the framebuffer is not complete for drawing.
     void check_complete() const;
 
-private:
+  private:
     friend class detail::Object<Framebuffer>;
     explicit Framebuffer(GLuint id) noexcept : Object(id) {}
     static void destroy(GLuint id) noexcept;
 };
 
 class VertexArray : public detail::Object<VertexArray> {
-public:
+  public:
     VertexArray() noexcept = default;
     static VertexArray create();
 
@@ -121,33 +120,32 @@ public:
     /// Enables float attribute `location` (shader `layout(location = …)`): `components`
     /// values of `type` (converted to float, not normalised), `offset` bytes into each vertex
     /// of binding point `binding`.
-    void attribute(GLuint location, GLuint binding, GLint components, GLenum type,
-                   GLuint offset);
+    void attribute(GLuint location, GLuint binding, GLint components, GLenum type, GLuint offset);
 
-private:
+  private:
     friend class detail::Object<VertexArray>;
     explicit VertexArray(GLuint id) noexcept : Object(id) {}
     static void destroy(GLuint id) noexcept;
 };
 
 class Shader : public detail::Object<Shader> {
-public:
+  public:
     Shader() noexcept = default;
     /// stage: GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, GL_COMPUTE_SHADER, ...
     static Shader create(GLenum stage);
 
-private:
+  private:
     friend class detail::Object<Shader>;
     explicit Shader(GLuint id) noexcept : Object(id) {}
     static void destroy(GLuint id) noexcept;
 };
 
 class Program : public detail::Object<Program> {
-public:
+  public:
     Program() noexcept = default;
     static Program create();
 
-private:
+  private:
     friend class detail::Object<Program>;
     explicit Program(GLuint id) noexcept : Object(id) {}
     static void destroy(GLuint id) noexcept;

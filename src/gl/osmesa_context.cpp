@@ -24,7 +24,7 @@ namespace hemirad::gl::detail {
 namespace {
 
 class OSMesaBackedContext final : public Context {
-public:
+  public:
     static std::unique_ptr<Context> create();
 
     ~OSMesaBackedContext() override {
@@ -39,7 +39,7 @@ public:
             throw RuntimeError("OSMesaMakeCurrent failed");
     }
 
-private:
+  private:
     static constexpr int kSize = 16; ///< side of the unused default colour buffer [pixels]
 
     explicit OSMesaBackedContext(OSMesaContext context)

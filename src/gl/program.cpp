@@ -88,8 +88,7 @@ Program link_program(std::initializer_list<std::string_view> shader_files) {
     GLint ok = GL_FALSE;
     glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
     if (!ok)
-        throw RuntimeError("program (" + names + ") failed to link:\n" +
-                           program_log(program.id()));
+        throw RuntimeError("program (" + names + ") failed to link:\n" + program_log(program.id()));
     return program;
 }
 

@@ -121,7 +121,8 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
     near_ = 1e-5 * b.diagonal();
     eps_ = 1e-9 * b.diagonal();
     for (std::uint32_t i = 0; i < scene.polygons.size(); i += kClusterSize) {
-        Cluster c{i, std::min<std::uint32_t>(i + kClusterSize, std::uint32_t(scene.polygons.size())),
+        Cluster c{i,
+                  std::min<std::uint32_t>(i + kClusterSize, std::uint32_t(scene.polygons.size())),
                   dvec3(1e300), dvec3(-1e300)};
         for (std::uint32_t j = c.begin; j < c.end; ++j)
             for (int k = 0; k < scene.polygons[j].count; ++k) {
@@ -251,16 +252,15 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
     program_ = gl::link_program({"hemicube.vert", "hemicube.frag"});
 }
 
-void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layout,
-                              double lod_bias, int angle_method) {
+void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layout, double lod_bias,
+                              int angle_method) {
     HEMIRAD_CHECK_LE(layout.res, max_res_);
     const HemicubeFrame frame = hemicube_frame(shooter);
     const dvec3 N = frame.N;
     const dvec3 c = shooter.geometry.centre;
 
     // Near plane: far below any patch, above float noise.
-    const double near =
-        std::min(near_, 1e-3 * std::sqrt(std::max(shooter.geometry.area, 1e-300)));
+    const double near = std::min(near_, 1e-3 * std::sqrt(std::max(shooter.geometry.area, 1e-300)));
     const dvec3 eye = c - origin_;
     const double eps = eps_;
 
@@ -283,7 +283,8 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
     float corners[12] = {};
     for (int k = 0; k < shooter.geometry.count; ++k) {
         const dvec3 q = shooter.geometry.corners[k] - origin_;
-        corners[3 * k] = float(q.x), corners[3 * k + 1] = float(q.y), corners[3 * k + 2] = float(q.z);
+        corners[3 * k] = float(q.x), corners[3 * k + 1] = float(q.y),
+                    corners[3 * k + 2] = float(q.z);
     }
     glUniform3fv(2, 4, corners);
     glUniform1i(6, shooter.geometry.count);
@@ -296,7 +297,9 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
     cull_seconds_ = 0;
     for (int f = 0; f < 5; ++f) {
         const auto& face = layout.faces[f];
-        struct { dvec3 dir, up; } v{frame.dir[f], frame.up[f]};
+        struct {
+            dvec3 dir, up;
+        } v{frame.dir[f], frame.up[f]};
         const glm::dmat4 view = glm::lookAt(dvec3(0.0), v.dir, v.up);
         const glm::mat4 proj = f == 0 ? reversed_z_frustum(-near, near, -near, near, near)
                                       : reversed_z_frustum(-near, near, 0, near, near);
@@ -348,12 +351,16 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
                     bool all_out_p = true;
                     for (int j = 0; j < p.count && all_out_p; ++j)
                         all_out_p = glm::dot(p.v[j] - c, pl) < -eps;
-                    if (all_out_p) { outside = true; break; }
+                    if (all_out_p) {
+                        outside = true;
+                        break;
+                    }
                 }
                 if (!outside) draw_polygons(i, i + 1);
             }
         }
-        cull_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t_cull).count();
+        cull_seconds_ +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t_cull).count();
         if (draw_first_.empty()) continue;
         ranges_ += draw_first_.size();
         glViewport(face.x, face.y, face.w, face.h);

@@ -20,7 +20,9 @@ namespace hemirad::gpu {
 struct HemicubeLayout {
     int res = 0;
     int width = 0, height = 0;
-    struct Face { int x, y, w, h; };
+    struct Face {
+        int x, y, w, h;
+    };
     Face faces[5];
     /// Delta form factors per pixel, row 0 at the bottom (GL order): on the top face
     /// dA / (pi (x^2 + y^2 + 1)^2), on a side face z dA / (pi (y^2 + z^2 + 1)^2); sum 1.
@@ -42,8 +44,8 @@ long hemicube_pixel(const HemicubeLayout& layout, const HemicubeFrame& frame, co
 
 /// Unit direction from the hemicube's centre through the centre of pixel (i, j) of `face`
 /// (pixel coordinates within the face, row 0 at the bottom).
-dvec3 hemicube_direction(const HemicubeLayout& layout, const HemicubeFrame& frame, int face,
-                         int i, int j);
+dvec3 hemicube_direction(const HemicubeLayout& layout, const HemicubeFrame& frame, int face, int i,
+                         int j);
 
 /// Parallax fraction of a rendered hemicube: an estimate of the share of the shooter's form
 /// factor whose visibility differs between the shooter's centre (where the hemicube sees from)
@@ -60,7 +62,7 @@ double parallax_fraction(const Scene& scene, const Shooter& shooter, const Hemic
                          const float* rgba);
 
 class HemicubeRenderer {
-public:
+  public:
     /// Uploads the scene's polygons and the patch-ID mip texture (depth = max of `disc`).
     /// Needs a current GL 4.5 context.
     HemicubeRenderer(const Scene& scene, const Discretisation& disc, int max_resolution);
@@ -81,10 +83,10 @@ public:
     std::size_t draw_ranges() const { return ranges_; }   ///< multi-draw entries, last render
     double cull_seconds() const { return cull_seconds_; } ///< CPU culling, last render [s]
 
-private:
+  private:
     const Scene* scene_;
-    dvec3 origin_{0.0};   ///< scene centre: GL works in scene-local floats
-    double near_ = 0;     ///< near plane distance [scene units]
+    dvec3 origin_{0.0}; ///< scene centre: GL works in scene-local floats
+    double near_ = 0;   ///< near plane distance [scene units]
     int max_res_ = 0;
     std::vector<GLint> first_;   ///< first vertex of each polygon in the vertex buffer
     std::vector<GLsizei> count_; ///< its vertex count (3 or 6)
@@ -95,7 +97,7 @@ private:
     };
     static constexpr std::uint32_t kClusterSize = 64;
     std::vector<Cluster> clusters_;
-    double eps_ = 0;      ///< 1e-9 x the scene's diagonal: "in front of a plane" [scene units]
+    double eps_ = 0; ///< 1e-9 x the scene's diagonal: "in front of a plane" [scene units]
     std::vector<GLint> draw_first_;
     std::vector<GLsizei> draw_count_;
     std::size_t drawn_ = 0, ranges_ = 0;

@@ -20,7 +20,9 @@ namespace hemirad {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 enum class Mode { Hemicube, Analytic, Hybrid };
 
@@ -28,7 +30,7 @@ enum class Mode { Hemicube, Analytic, Hybrid };
 constexpr std::uint32_t kNoShooterPolygon = 0xFFFFFFFFu;
 
 class HemicubeProvider final : public FormFactorProvider {
-public:
+  public:
     HemicubeProvider(Mode mode, std::string name, const Scene& scene, const Discretisation& disc,
                      const GpuProviderOptions& options)
         : mode_(mode), name_(std::move(name)), scene_(&scene), disc_(disc), options_(options) {
@@ -73,7 +75,8 @@ public:
     void restore_state(const std::vector<double>& state) override {
         if (state.size() != 1 || !std::isfinite(state[0]) || state[0] < 0)
             throw InputError("GPU provider state: expected 1 finite value >= 0 (max shooter "
-                             "power), got " + std::to_string(state.size()) + " values");
+                             "power), got " +
+                             std::to_string(state.size()) + " values");
         max_power_ = state[0];
     }
 
@@ -169,7 +172,7 @@ public:
         timings_.push_back({"reduce", t_reduce});
     }
 
-private:
+  private:
     const gpu::HemicubeLayout& layout_for(const Shooter& shooter) {
         int res = options_.resolution;
         if (res == 0) {
@@ -332,7 +335,7 @@ private:
             const dvec3 d = centre - eye;
             if (glm::dot(poly.normal, d) >= 0) continue; // faces away from the shooter
             const long pixel = gpu::hemicube_pixel(layout, frame, d);
-            if (pixel < 0) continue;                      // below the shooter's plane
+            if (pixel < 0) continue; // below the shooter's plane
             const float id = pixels[4 * std::size_t(pixel) + 2];
             if (id > 0.5f || id < -0.5f) {
                 const Polygon& q = scene_->polygons[std::uint32_t(std::abs(id)) - 1];
@@ -352,8 +355,8 @@ private:
     }
 
     // Adds the link of node a: analytic F(j->S), and the pixel sum as A_S F(S->j).
-    void add_link(const Shooter& shooter, const PatchAddress& a, float analytic,
-                  double pixel_power, std::vector<Link>& links) {
+    void add_link(const Shooter& shooter, const PatchAddress& a, float analytic, double pixel_power,
+                  std::vector<Link>& links) {
         const double area_j = area(a.polygon, a.level, a.index);
         Link l;
         l.receiver = a;
@@ -361,8 +364,12 @@ private:
         // Reciprocity: F(j->S) = F(S->j) A_S / A_j.
         l.ff_pixel = float(pixel_power / area_j);
         switch (mode_) {
-        case Mode::Hemicube: l.ff = l.ff_pixel; break;
-        case Mode::Analytic: l.ff = l.ff_analytic; break;
+        case Mode::Hemicube:
+            l.ff = l.ff_pixel;
+            break;
+        case Mode::Analytic:
+            l.ff = l.ff_analytic;
+            break;
         case Mode::Hybrid: {
             const bool tri = scene_->polygons[a.polygon].is_triangle();
             for (std::uint32_t nb : patch_neighbours(tri, a.level, a.index)) {
@@ -410,9 +417,11 @@ private:
         for (std::uint32_t c : patch_children(tri, a.level, a.index)) {
             const PatchAddress ca{a.polygon, a.level + 1, c};
             const std::uint64_t id = node_id(ca.polygon, ca.level, ca.index);
-            if (seen_[id] == stamp_) continue;                 // linked on its own
-            if (below_seen_[id] == stamp_) collect_fillers(ca); // partly linked below
-            else fillers_.push_back(ca);
+            if (seen_[id] == stamp_) continue; // linked on its own
+            if (below_seen_[id] == stamp_)
+                collect_fillers(ca); // partly linked below
+            else
+                fillers_.push_back(ca);
         }
     }
 
@@ -463,7 +472,7 @@ std::unique_ptr<FormFactorProvider> make_hemicube_provider(const std::string& mo
                                                            const Scene& scene,
                                                            const Discretisation& disc,
                                                            const GpuProviderOptions& options) {
-    const Mode m = mode == "hemicube" ? Mode::Hemicube
+    const Mode m = mode == "hemicube"   ? Mode::Hemicube
                    : mode == "analytic" ? Mode::Analytic
                                         : Mode::Hybrid;
     return std::make_unique<HemicubeProvider>(m, mode, scene, disc, options);

@@ -30,8 +30,7 @@ Discretisation discretise(const Scene& scene, const HierarchyOptions& options) {
     return d;
 }
 
-Hierarchy::Hierarchy(const Scene& scene, const Discretisation& disc)
-    : scene_(&scene), disc_(disc) {
+Hierarchy::Hierarchy(const Scene& scene, const Discretisation& disc) : scene_(&scene), disc_(disc) {
     HEMIRAD_CHECK_EQ(disc.depth.size(), scene.polygons.size());
     const std::size_t np = scene.polygons.size();
     base_.resize(np);

@@ -90,7 +90,10 @@ std::uint32_t patch_at(const Polygon& p, std::uint32_t level, double u, double v
     }
     std::uint32_t i = cell(u), j = cell(v);
     if (i + j > n - 1) { // on the hypotenuse, numerically outside
-        if (i > 0) --i; else --j;
+        if (i > 0)
+            --i;
+        else
+            --j;
     }
     const double fu = u * n - i, fv = v * n - j;
     const bool inverted = fu + fv > 1.0 && i + j <= n - 2;
@@ -128,8 +131,10 @@ std::uint32_t patch_parent(bool triangle, std::uint32_t level, std::uint32_t ind
     // child of an upright parent sits at (0,0). The inverted parent's children are the
     // inverted ones at (1,0),(0,1),(1,1) and the upright one at (1,1).
     bool parent_inverted;
-    if (!c.inverted) parent_inverted = (li == 1 && lj == 1);
-    else parent_inverted = !(li == 0 && lj == 0);
+    if (!c.inverted)
+        parent_inverted = (li == 1 && lj == 1);
+    else
+        parent_inverted = !(li == 0 && lj == 0);
     return tri_index(np, {pi, pj, parent_inverted});
 }
 

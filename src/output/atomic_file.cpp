@@ -38,7 +38,9 @@ std::string random_suffix() {
     return s;
 }
 
-std::string error_text(int err) { return std::strerror(err); }
+std::string error_text(int err) {
+    return std::strerror(err);
+}
 
 } // namespace
 
@@ -65,7 +67,9 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
     }
 }
 
-AtomicFile::~AtomicFile() { discard(); }
+AtomicFile::~AtomicFile() {
+    discard();
+}
 
 AtomicFile::AtomicFile(AtomicFile&& other) noexcept
     : path_(std::move(other.path_)), temp_path_(std::exchange(other.temp_path_, {})),

@@ -18,7 +18,7 @@
 namespace hemirad {
 
 class AtomicFile {
-public:
+  public:
     /// Creates the temporary file beside `path` (mode 0666 minus the umask, like fopen).
     /// Throws RuntimeError naming `path` when it cannot (missing or unwritable directory).
     explicit AtomicFile(std::string path);
@@ -44,7 +44,7 @@ public:
     /// (after removing the temporary file) on failure. Calling it twice is a broken invariant.
     void commit();
 
-private:
+  private:
     void discard() noexcept; ///< close and remove the temporary file if still there
     [[noreturn]] void fail(const std::string& what, int err);
 

@@ -188,8 +188,7 @@ char32_t next_code_point(std::string_view s, std::size_t& i) {
 }
 
 /// Calls fn(column, line, code point) for each character of `text` (column and line in cells).
-template <class Fn>
-void for_each_char(std::string_view text, Fn&& fn) {
+template <class Fn> void for_each_char(std::string_view text, Fn&& fn) {
     int col = 0, line = 0;
     for (std::size_t i = 0; i < text.size();) {
         const char32_t cp = next_code_point(text, i);
@@ -270,8 +269,10 @@ bool clip_segment(double& x0, double& y0, double& x1, double& y1, const Rect& r,
             if (q[i] < 0.0) return false;
         } else {
             const double t = q[i] / p[i];
-            if (p[i] < 0.0) t0 = std::max(t0, t);
-            else t1 = std::min(t1, t);
+            if (p[i] < 0.0)
+                t0 = std::max(t0, t);
+            else
+                t1 = std::min(t1, t);
         }
     }
     if (t0 > t1) return false;
@@ -287,8 +288,8 @@ void line_in(Image8& image, int x0, int y0, int x1, int y1, Rgb8 colour, int thi
              const Rect& clip) {
     thickness = std::max(1, thickness);
     const auto inside = [&](int x, int y) {
-        return x >= clip.x0 - thickness && x <= clip.x1 + thickness &&
-               y >= clip.y0 - thickness && y <= clip.y1 + thickness;
+        return x >= clip.x0 - thickness && x <= clip.x1 + thickness && y >= clip.y0 - thickness &&
+               y <= clip.y1 + thickness;
     };
     if (!inside(x0, y0) || !inside(x1, y1)) { // keep the loop short for far-away ends
         double a = x0, b = y0, c = x1, d = y1;
@@ -324,7 +325,9 @@ void line_in(Image8& image, int x0, int y0, int x1, int y1, Rgb8 colour, int thi
     }
 }
 
-Rect bounds_of(const Image8& image) { return {0, 0, image.width - 1, image.height - 1}; }
+Rect bounds_of(const Image8& image) {
+    return {0, 0, image.width - 1, image.height - 1};
+}
 
 } // namespace
 
@@ -362,15 +365,12 @@ namespace {
 
 /// matplotlib's viridis (CC0) at entries 0, 16, 32, ..., 240 and 255 of its 256.
 constexpr double kViridis[17][3] = {
-    {0.267004, 0.004874, 0.329415}, {0.282327, 0.094955, 0.417331},
-    {0.278826, 0.175490, 0.483397}, {0.258965, 0.251537, 0.524736},
-    {0.229739, 0.322361, 0.545706}, {0.199430, 0.387607, 0.554642},
-    {0.172719, 0.448791, 0.557885}, {0.149039, 0.508051, 0.557250},
-    {0.127568, 0.566949, 0.550556}, {0.120638, 0.625828, 0.533488},
-    {0.157851, 0.683765, 0.501686}, {0.246070, 0.738910, 0.452024},
-    {0.369214, 0.788888, 0.382914}, {0.515992, 0.831158, 0.294279},
-    {0.678489, 0.863742, 0.189503}, {0.845561, 0.887322, 0.099702},
-    {0.993248, 0.906157, 0.143936},
+    {0.267004, 0.004874, 0.329415}, {0.282327, 0.094955, 0.417331}, {0.278826, 0.175490, 0.483397},
+    {0.258965, 0.251537, 0.524736}, {0.229739, 0.322361, 0.545706}, {0.199430, 0.387607, 0.554642},
+    {0.172719, 0.448791, 0.557885}, {0.149039, 0.508051, 0.557250}, {0.127568, 0.566949, 0.550556},
+    {0.120638, 0.625828, 0.533488}, {0.157851, 0.683765, 0.501686}, {0.246070, 0.738910, 0.452024},
+    {0.369214, 0.788888, 0.382914}, {0.515992, 0.831158, 0.294279}, {0.678489, 0.863742, 0.189503},
+    {0.845561, 0.887322, 0.099702}, {0.993248, 0.906157, 0.143936},
 };
 
 inline std::uint8_t to_byte(double v) {
@@ -432,8 +432,8 @@ std::string format_linear(double v, double step) {
     char buf[64];
     const double a = std::max(std::abs(v), step);
     if (a >= 1e5 || step < 1e-3) {
-        const int digits = std::clamp(int(std::floor(std::log10(a)) -
-                                          std::floor(std::log10(step) + 1e-9)) + 1, 1, 6);
+        const int digits = std::clamp(
+            int(std::floor(std::log10(a)) - std::floor(std::log10(step) + 1e-9)) + 1, 1, 6);
         std::snprintf(buf, sizeof buf, "%.*g", digits, v);
     } else {
         const int decimals = std::max(0, -int(std::floor(std::log10(step) + 1e-9)));
@@ -512,8 +512,7 @@ void draw_colour_legend(Image8& image, int x, int y, int w, int h, double lo, do
         for (int r = 0; r < h; ++r)
             fill_rect(image, x, y + r, w, 1, false_colour(1.0 - (r + 0.5) / h));
     } else {
-        for (int c = 0; c < w; ++c)
-            fill_rect(image, x + c, y, 1, h, false_colour((c + 0.5) / w));
+        for (int c = 0; c < w; ++c) fill_rect(image, x + c, y, 1, h, false_colour((c + 0.5) / w));
     }
     draw_rect(image, x - 1, y - 1, w + 2, h + 2, ink);
     if (!unit.empty()) draw_text(image, x, y - 1 - 3 - kGlyphHeight, unit, ink);
@@ -583,8 +582,7 @@ Image8 contact_sheet(const std::vector<Image8>& frames, const std::vector<std::s
         blit(sheet, f, cx + (cw - f.width) / 2, cy + (ch - f.height) / 2);
         if (std::size_t(i) < captions.size() && !captions[std::size_t(i)].empty()) {
             const std::string text = fit_text(captions[std::size_t(i)], cw);
-            draw_text(sheet, cx + (cw - text_width(text)) / 2, cy + ch + 3, text,
-                      {230, 230, 230});
+            draw_text(sheet, cx + (cw - text_width(text)) / 2, cy + ch + 3, text, {230, 230, 230});
         }
     }
     return sheet;
@@ -609,7 +607,7 @@ double PlotFrame::py(double y) const {
 
 Rgb8 plot_palette(int index) {
     static constexpr Rgb8 kTableau10[10] = {
-        {31, 119, 180}, {255, 127, 14}, {44, 160, 44},  {214, 39, 40},   {148, 103, 189},
+        {31, 119, 180}, {255, 127, 14},  {44, 160, 44},   {214, 39, 40},  {148, 103, 189},
         {140, 86, 75},  {227, 119, 194}, {127, 127, 127}, {188, 189, 34}, {23, 190, 207},
     };
     return kTableau10[((index % 10) + 10) % 10];
@@ -748,8 +746,7 @@ Image8 plot_lines(const std::vector<PlotSeries>& series, const std::string& titl
         draw_text(image, (f.left + f.right - text_width(xlabel)) / 2,
                   f.bottom + 8 + kGlyphHeight + 6, xlabel, kBlack);
     if (!ylabel.empty())
-        draw_text_vertical(image, 6, (f.top + f.bottom + text_width(ylabel)) / 2, ylabel,
-                           kBlack);
+        draw_text_vertical(image, 6, (f.top + f.bottom + text_width(ylabel)) / 2, ylabel, kBlack);
 
     // Legend, top right inside the plot area.
     std::vector<const PlotSeries*> entries;
@@ -798,9 +795,9 @@ Image8 false_colour_luminance(const ImageRGB& image, double unit_scale, bool log
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
             const double L = lum[std::size_t(y) * image.width + x];
-            out.set(x, y, L < 0 ? Rgb8{128, 128, 128}
-                                : false_colour(colour_scale_position(L, range.lo, range.hi,
-                                                                     log_scale)));
+            out.set(x, y,
+                    L < 0 ? Rgb8{128, 128, 128}
+                          : false_colour(colour_scale_position(L, range.lo, range.hi, log_scale)));
         }
     return out;
 }

@@ -90,7 +90,7 @@ inline constexpr int kContactSheetCaption = 12; ///< caption strip under a frame
 // --- line plots ------------------------------------------------------------------------------
 
 struct PlotSeries {
-    std::string label;       ///< legend entry; empty: not in the legend
+    std::string label;        ///< legend entry; empty: not in the legend
     std::vector<double> x, y; ///< points in order; the shorter length is used
     Rgb8 colour{31, 119, 180};
 };

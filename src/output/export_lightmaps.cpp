@@ -144,9 +144,8 @@ Lightmap build_lightmap(const Hierarchy& h, std::uint32_t group, const std::stri
         total += double(s) * s;
         widest = std::max(widest, s);
     }
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return lm.charts[a].n > lm.charts[b].n;
-    });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return lm.charts[a].n > lm.charts[b].n; });
     const int width = std::max(widest, int(std::ceil(std::sqrt(total))));
     int x = 0, y = 0, shelf = 0;
     for (std::size_t c : order) {

@@ -25,7 +25,9 @@ double srgb_decode(double e) {
 namespace {
 
 /// A channel as the operators see it: NaN and negative values are 0; +inf stays.
-inline double clean(double v) { return v > 0.0 ? v : 0.0; }
+inline double clean(double v) {
+    return v > 0.0 ? v : 0.0;
+}
 
 inline double pixel_luminance(const float* p) {
     return luminance(clean(p[0]), clean(p[1]), clean(p[2]));
@@ -63,8 +65,8 @@ Image8 tone_map(const ImageRGB& image, const ToneMap& options) {
     if (!std::isfinite(options.exposure))
         throw InputError("tone map: exposure must be a finite number of stops");
     HEMIRAD_CHECK_EQ(image.pixels.size(), std::size_t(image.width) * image.height * 3);
-    const double k = (options.auto_exposure ? auto_exposure_scale(image) : 1.0) *
-                     std::exp2(options.exposure);
+    const double k =
+        (options.auto_exposure ? auto_exposure_scale(image) : 1.0) * std::exp2(options.exposure);
     constexpr double inv_white2 = 1.0 / (kReinhardWhite * kReinhardWhite);
 
     Image8 out(image.width, image.height);

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
+#include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStdIO.h>
-#include <Imath/half.h>
 #include <png.h>
 
 #include "hemirad/error.h"
@@ -49,7 +49,7 @@ void write_exr(const std::string& path, const ImageRGB& image, bool half) {
         for (std::size_t i = 0; i < halves.size(); ++i) {
             float v = image.pixels[i];
             if (std::isfinite(v)) v = std::clamp(v, -kHalfMax, kHalfMax); // not +-inf
-            halves[i] = Imath::half(v); // rounds to nearest
+            halves[i] = Imath::half(v);                                   // rounds to nearest
         }
     }
 
@@ -92,8 +92,8 @@ ImageRGB read_exr(const std::string& path) {
                                " x " + std::to_string(h));
         ImageRGB image{int(w), int(h)};
         const Imf::ChannelList& channels = file.header().channels();
-        const bool rgb = channels.findChannel("R") || channels.findChannel("G") ||
-                         channels.findChannel("B");
+        const bool rgb =
+            channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
         const bool grey = !rgb && channels.findChannel("Y");
         const char* names[3] = {"R", "G", "B"};
         const int count = grey ? 1 : 3;
@@ -132,8 +132,8 @@ void write_png(const std::string& path, const Image8& image) {
     png.format = PNG_FORMAT_RGB; // 8-bit sRGB: libpng writes sRGB and gAMA, nothing timed
     std::string bytes(PNG_IMAGE_PNG_SIZE_MAX(png), '\0');
     png_alloc_size_t size = bytes.size();
-    const bool ok = png_image_write_to_memory(&png, bytes.data(), &size, 0, image.rgb.data(),
-                                              0, nullptr);
+    const bool ok =
+        png_image_write_to_memory(&png, bytes.data(), &size, 0, image.rgb.data(), 0, nullptr);
     const std::string message = png.message;
     png_image_free(&png);
     if (!ok) throw RuntimeError(path + ": cannot encode PNG: " + message);

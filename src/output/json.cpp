@@ -27,11 +27,21 @@ void write_string(std::string& out, const std::string& s) {
     out += '"';
     for (unsigned char c : s) {
         switch (c) {
-        case '"': out += "\\\""; break;
-        case '\\': out += "\\\\"; break;
-        case '\n': out += "\\n"; break;
-        case '\t': out += "\\t"; break;
-        case '\r': out += "\\r"; break;
+        case '"':
+            out += "\\\"";
+            break;
+        case '\\':
+            out += "\\\\";
+            break;
+        case '\n':
+            out += "\\n";
+            break;
+        case '\t':
+            out += "\\t";
+            break;
+        case '\r':
+            out += "\\r";
+            break;
         default:
             if (c < 0x20) {
                 char buf[8];
@@ -53,15 +63,20 @@ void Json::write(std::string& out, int indent, int depth) const {
         out += '\n';
         out.append(std::size_t(indent * d), ' ');
     };
-    if (std::holds_alternative<std::nullptr_t>(v_)) out += "null";
-    else if (auto* b = std::get_if<bool>(&v_)) out += *b ? "true" : "false";
+    if (std::holds_alternative<std::nullptr_t>(v_))
+        out += "null";
+    else if (auto* b = std::get_if<bool>(&v_))
+        out += *b ? "true" : "false";
     else if (auto* x = std::get_if<double>(&v_)) {
         HEMIRAD_CHECK(std::isfinite(*x));
         char buf[32];
-        if (*x == std::floor(*x) && std::abs(*x) < 1e15) std::snprintf(buf, sizeof buf, "%.0f", *x);
-        else std::snprintf(buf, sizeof buf, "%.17g", *x);
+        if (*x == std::floor(*x) && std::abs(*x) < 1e15)
+            std::snprintf(buf, sizeof buf, "%.0f", *x);
+        else
+            std::snprintf(buf, sizeof buf, "%.17g", *x);
         out += buf;
-    } else if (auto* s = std::get_if<std::string>(&v_)) write_string(out, *s);
+    } else if (auto* s = std::get_if<std::string>(&v_))
+        write_string(out, *s);
     else if (auto* a = std::get_if<Array>(&v_)) {
         out += '[';
         bool scalars = true;

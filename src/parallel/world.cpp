@@ -50,15 +50,17 @@ int World::launched_size() {
     return std::getenv("PMIX_RANK") || std::getenv("PMI_RANK") ? 2 : 1;
 }
 
-bool World::built_with_mpi() { return HEMIRAD_HAVE_MPI != 0; }
+bool World::built_with_mpi() {
+    return HEMIRAD_HAVE_MPI != 0;
+}
 
 World::World() = default;
 
 World::World(int& argc, char**& argv) {
     g_world = this;
 #if HEMIRAD_HAVE_MPI
-    const bool launched = std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMIX_RANK") ||
-                          std::getenv("PMI_RANK");
+    const bool launched =
+        std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMIX_RANK") || std::getenv("PMI_RANK");
     if (!launched) return;
     check(MPI_Init(&argc, &argv), "MPI_Init");
     started_ = true;
@@ -95,8 +97,7 @@ std::vector<std::vector<std::uint8_t>> World::all_gather(const std::vector<std::
     const std::size_t n_ranks = static_cast<std::size_t>(size_);
     std::vector<int> sizes(n_ranks), offsets(n_ranks);
     // The sizes first: this all-gather also waits for the slowest rank; the second moves bytes.
-    check(MPI_Allgather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD),
-          "MPI_Allgather");
+    check(MPI_Allgather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD), "MPI_Allgather");
     const double t0 = MPI_Wtime();
     long long total = 0;
     for (int r = 0; r < size_; ++r) {
@@ -104,7 +105,8 @@ std::vector<std::vector<std::uint8_t>> World::all_gather(const std::vector<std::
         total += sizes[std::size_t(r)];
     }
     if (total > (1ll << 31) - 1)
-        throw RuntimeError("MPI all-gather of " + std::to_string(total) + " bytes: more than 2 GiB");
+        throw RuntimeError("MPI all-gather of " + std::to_string(total) +
+                           " bytes: more than 2 GiB");
     std::vector<std::uint8_t> all(std::size_t(total) + 1);
     check(MPI_Allgatherv(mine.data(), n, MPI_BYTE, all.data(), sizes.data(), offsets.data(),
                          MPI_BYTE, MPI_COMM_WORLD),

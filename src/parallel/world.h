@@ -11,7 +11,7 @@
 namespace hemirad::parallel {
 
 class World final : public Collective {
-public:
+  public:
     World(int& argc, char**& argv);
     World(); ///< a world of one that never starts MPI
     ~World() override;
@@ -24,8 +24,8 @@ public:
     int local_rank() const { return local_rank_; }
     /// Processes on this machine.
     int local_size() const { return local_size_; }
-    std::vector<std::vector<std::uint8_t>> all_gather(
-        const std::vector<std::uint8_t>& mine) override;
+    std::vector<std::vector<std::uint8_t>>
+    all_gather(const std::vector<std::uint8_t>& mine) override;
     bool any(bool flag) override;
     double last_transfer_seconds() const override { return transfer_seconds_; }
     /// Element-wise sum over the ranks, the same bits on every rank: summed on rank 0
@@ -42,7 +42,7 @@ public:
     /// Processes the launcher says it started (its environment), 1 when not launched by one.
     static int launched_size();
 
-private:
+  private:
     int rank_ = 0, size_ = 1, local_rank_ = 0, local_size_ = 1;
     bool started_ = false; ///< this World called MPI_Init
     double transfer_seconds_ = 0;

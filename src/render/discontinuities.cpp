@@ -64,8 +64,7 @@ DiscontinuityStats resolve_discontinuities(ImageRGB& image, const Hierarchy& h,
     work();
     for (std::thread& t : pool) t.join();
     stats.pixels = pixels.load();
-    stats.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return stats;
 }
 

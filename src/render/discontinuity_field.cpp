@@ -13,7 +13,9 @@ namespace {
 constexpr double kJump = 0.2;   ///< relative difference that flags a pair of leaves
 constexpr double kFloor = 0.01; ///< ...when also above this share of the 95th percentile
 
-double luminance(const dvec3& e) { return 0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z; }
+double luminance(const dvec3& e) {
+    return 0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z;
+}
 
 } // namespace
 
@@ -64,10 +66,10 @@ DiscontinuityField::DiscontinuityField(const Hierarchy& h) : h_(&h) {
 
     GatherOptions go;
     go.threads = 1;
-    go.jitter = false;       // no noise from point to point
-    go.coarse_test = false;  // no step where a coarse ray first meets an occluder
+    go.jitter = false;      // no noise from point to point
+    go.coarse_test = false; // no step where a coarse ray first meets an occluder
     point_ = std::make_unique<FinalGather>(h, go);
-    go.coarse_test = true;   // leaf means: the whole-emitter shortcut where all is visible
+    go.coarse_test = true; // leaf means: the whole-emitter shortcut where all is visible
     const FinalGather mean(h, go);
     for (const std::uint64_t k : flagged) {
         const std::uint32_t p = std::uint32_t(k >> 32), i = std::uint32_t(k);

@@ -32,16 +32,20 @@ using Cell = std::array<std::int64_t, 3>;
 struct Entry {
     Cell cell;
     std::uint32_t point;
-    bool operator<(const Entry& o) const { return std::tie(cell, point) < std::tie(o.cell, o.point); }
+    bool operator<(const Entry& o) const {
+        return std::tie(cell, point) < std::tie(o.cell, o.point);
+    }
 };
 
-std::int64_t cell_of(double x, double size) { return std::int64_t(std::floor(x / size)); }
+std::int64_t cell_of(double x, double size) {
+    return std::int64_t(std::floor(x / size));
+}
 
 } // namespace
 
-std::vector<std::uint32_t> weld_points(
-    const std::vector<glm::dvec3>& points, const std::vector<std::uint8_t>& candidate,
-    double tolerance, const std::function<bool(std::uint32_t, std::uint32_t)>& may_join) {
+std::vector<std::uint32_t>
+weld_points(const std::vector<glm::dvec3>& points, const std::vector<std::uint8_t>& candidate,
+            double tolerance, const std::function<bool(std::uint32_t, std::uint32_t)>& may_join) {
     HEMIRAD_CHECK_EQ(points.size(), candidate.size());
     HEMIRAD_CHECK(tolerance > 0);
     const double size = 2 * tolerance;
@@ -68,7 +72,8 @@ std::vector<std::uint32_t> weld_points(
         }
         // Each pair once: only the points with a smaller index, which in the point's own
         // cell are the entries just before it.
-        for (std::size_t j = k; j-- > 0 && entries[j].cell == e.cell;) join(entries[j].point, e.point);
+        for (std::size_t j = k; j-- > 0 && entries[j].cell == e.cell;)
+            join(entries[j].point, e.point);
         if (lo == hi) continue; // away from the cell's walls: its own cell is all
         Cell c;
         for (c[0] = lo[0]; c[0] <= hi[0]; ++c[0])

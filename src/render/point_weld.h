@@ -18,8 +18,8 @@ namespace hemirad {
 
 /// For every point, the smallest index of the points it is welded to (itself if none).
 /// Points with candidate[i] == 0 are never welded. `tolerance` > 0 [scene units].
-std::vector<std::uint32_t> weld_points(
-    const std::vector<glm::dvec3>& points, const std::vector<std::uint8_t>& candidate,
-    double tolerance, const std::function<bool(std::uint32_t, std::uint32_t)>& may_join);
+std::vector<std::uint32_t>
+weld_points(const std::vector<glm::dvec3>& points, const std::vector<std::uint8_t>& candidate,
+            double tolerance, const std::function<bool(std::uint32_t, std::uint32_t)>& may_join);
 
 } // namespace hemirad

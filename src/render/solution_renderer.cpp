@@ -47,14 +47,14 @@
 
 #include "gl/objects.h"
 #include "gl/program.h"
-#include "render/point_weld.h"
 #include "hemirad/error.h"
+#include "render/point_weld.h"
 
 namespace hemirad {
 
 namespace {
 
-struct Vertex { // attributes of solution.vert
+struct Vertex {        // attributes of solution.vert
     float position[3]; ///< scene-local (world minus the scene centre), for float precision
     float grid[3];     ///< (u n, v n, triangle ? 1 : 0)
     std::uint32_t node;
@@ -126,7 +126,7 @@ glm::mat4 reversed_z_perspective(double fov_y_rad, double aspect, double near) {
 /// Saves the GL state that rendering changes and a caller could care about; restores it on
 /// destruction.
 class StateGuard {
-public:
+  public:
     StateGuard() {
         glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_fb_);
         glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fb_);
@@ -167,7 +167,7 @@ public:
     StateGuard(const StateGuard&) = delete;
     StateGuard& operator=(const StateGuard&) = delete;
 
-private:
+  private:
     static void set(GLenum cap, GLboolean on) { on ? glEnable(cap) : glDisable(cap); }
 
     GLint draw_fb_ = 0, read_fb_ = 0, viewport_[4] = {}, program_ = 0, vao_ = 0;
@@ -198,18 +198,19 @@ Camera parse_camera(const std::string& text) {
         } catch (const std::exception&) {
             used = 0;
         }
-        while (used < item.size() && std::isspace(static_cast<unsigned char>(item[used])))
-            ++used;
+        while (used < item.size() && std::isspace(static_cast<unsigned char>(item[used]))) ++used;
         if (used == 0 || used != item.size() || !std::isfinite(x))
-            throw InputError("camera '" + text + "': value " + std::to_string(v.size() + 1) +
-                             " '" + item + "' is not a number");
+            throw InputError("camera '" + text + "': value " + std::to_string(v.size() + 1) + " '" +
+                             item + "' is not a number");
         v.push_back(x);
     }
     if (!text.empty() && text.back() == ',')
         throw InputError("camera '" + text + "': empty value after the last comma");
     if (v.size() != 10)
-        throw InputError("camera '" + text + "': expected 10 values eye,target,up,fov (ex,ey,ez,"
-                         "tx,ty,tz,ux,uy,uz,fov), got " + std::to_string(v.size()));
+        throw InputError("camera '" + text +
+                         "': expected 10 values eye,target,up,fov (ex,ey,ez,"
+                         "tx,ty,tz,ux,uy,uz,fov), got " +
+                         std::to_string(v.size()));
     Camera c;
     c.name = "command line";
     c.eye = dvec3(v[0], v[1], v[2]);
@@ -220,7 +221,8 @@ Camera parse_camera(const std::string& text) {
     if (!(glm::length(d) > 0))
         throw InputError("camera '" + text + "': the eye and the target are the same point");
     if (!(glm::length(glm::cross(glm::normalize(d), c.up)) > 1e-9 * glm::length(c.up)))
-        throw InputError("camera '" + text + "': the up vector is zero or parallel to the "
+        throw InputError("camera '" + text +
+                         "': the up vector is zero or parallel to the "
                          "view direction");
     if (!(c.fov_y_deg > 0 && c.fov_y_deg < 180)) {
         std::ostringstream s;
@@ -251,9 +253,9 @@ struct SolutionRenderer::Impl {
     std::vector<std::uint8_t> textured; ///< per polygon: drawn with its texture
 
     // Per-frame scratch.
-    std::vector<float> leaf_values;      ///< RGB per leaf
-    std::vector<glm::vec4> node_sums;    ///< (sum A B, sum A) per node
-    std::vector<float> node_values;      ///< RGB per node
+    std::vector<float> leaf_values;   ///< RGB per leaf
+    std::vector<glm::vec4> node_sums; ///< (sum A B, sum A) per node
+    std::vector<float> node_values;   ///< RGB per node
 
     // The highlighted patch (RenderOptions::highlight): its 3 or 4 corners.
     gl::Buffer highlight_vertices;
@@ -402,8 +404,7 @@ void SolutionRenderer::Impl::build(const Hierarchy& h) {
     indices = gl::Buffer::create();
     indices.storage(GLsizeiptr(idx.size() * sizeof(std::uint32_t)), idx.data(), 0);
     triangle_leaf = gl::Buffer::create();
-    triangle_leaf.storage(GLsizeiptr(tri_leaf.size() * sizeof(std::uint32_t)), tri_leaf.data(),
-                          0);
+    triangle_leaf.storage(GLsizeiptr(tri_leaf.size() * sizeof(std::uint32_t)), tri_leaf.data(), 0);
     const std::vector<float> zeros_nodes(3 * std::max<std::size_t>(node_count, 1), 0.f);
     node_rgb = gl::Buffer::create();
     node_rgb.storage(GLsizeiptr(zeros_nodes.size() * sizeof(float)), zeros_nodes.data(),
@@ -486,8 +487,7 @@ glm::mat4 SolutionRenderer::Impl::view_projection(const Camera& camera, int widt
     const double aspect = double(std::max(width, 1)) / double(std::max(height, 1));
     const glm::dmat4 view = glm::lookAt(camera.eye - origin, camera.target - origin, camera.up);
     const double near = 1e-5 * diagonal;
-    return reversed_z_perspective(glm::radians(camera.fov_y_deg), aspect, near) *
-           glm::mat4(view);
+    return reversed_z_perspective(glm::radians(camera.fov_y_deg), aspect, near) * glm::mat4(view);
 }
 
 void SolutionRenderer::Impl::draw_scene(const Camera& camera, const RenderOptions& o, int width,
@@ -655,9 +655,8 @@ ImageRGB SolutionRenderer::render(const Hierarchy& h, const Camera& camera,
     return image;
 }
 
-void SolutionRenderer::draw(const Hierarchy& h, const Camera& camera,
-                            const RenderOptions& options, int viewport_width,
-                            int viewport_height) {
+void SolutionRenderer::draw(const Hierarchy& h, const Camera& camera, const RenderOptions& options,
+                            int viewport_width, int viewport_height) {
     Impl& m = *impl_;
     const StateGuard guard;
     m.ensure_geometry(h);

@@ -115,7 +115,8 @@ Scene cornell(const BuiltinOptions& o) {
     cam.eye = dvec3(278, 273, -800);
     cam.target = dvec3(278, 273, 0);
     cam.up = dvec3(0, 1, 0);
-    cam.fov_y_deg = 2 * std::atan(0.0125 / 0.035) * 180 / std::numbers::pi; // 25 mm film, 35 mm lens
+    cam.fov_y_deg =
+        2 * std::atan(0.0125 / 0.035) * 180 / std::numbers::pi; // 25 mm film, 35 mm lens
     b.scene.cameras.push_back(cam);
     return b.scene;
 }
@@ -192,8 +193,8 @@ const char* builtin_names() {
 }
 
 bool is_builtin(const std::string& name) {
-    for (const char* n : {"cornell", "cube", "furnace", "sphere", "room", "cie53", "cie56",
-                          "cie57", "cie58", "room402", "scene3138"})
+    for (const char* n : {"cornell", "cube", "furnace", "sphere", "room", "cie53", "cie56", "cie57",
+                          "cie58", "room402", "scene3138"})
         if (name == n) return true;
     return false;
 }
@@ -203,22 +204,33 @@ Scene make_builtin(const std::string& name, const BuiltinOptions& o) {
     // The validation and benchmark rooms, as the tests and hemirad-bench build them.
     const double floor_exitance = v::kCie56FloorReflectance * v::kCie56FloorIlluminance;
     Scene room;
-    if (name == "cie53") room = v::make_cie53_area_source();
-    else if (name == "cie56") room = v::make_cie56_lit_floor(floor_exitance, false);
-    else if (name == "cie57") room = v::make_cie56_lit_floor(floor_exitance, true);
-    else if (name == "cie58") room = v::make_cie58_cube(reflectance(o, 0.5));
-    else if (name == "room402") room = v::make_bench_room({2, 6, 7, 0.6});
-    else if (name == "scene3138") room = v::make_bench_room({17, 6, 28, 0.6});
-    else if (name == "room") room = v::make_light_room(reflectance(o, 0.5));
+    if (name == "cie53")
+        room = v::make_cie53_area_source();
+    else if (name == "cie56")
+        room = v::make_cie56_lit_floor(floor_exitance, false);
+    else if (name == "cie57")
+        room = v::make_cie56_lit_floor(floor_exitance, true);
+    else if (name == "cie58")
+        room = v::make_cie58_cube(reflectance(o, 0.5));
+    else if (name == "room402")
+        room = v::make_bench_room({2, 6, 7, 0.6});
+    else if (name == "scene3138")
+        room = v::make_bench_room({17, 6, 28, 0.6});
+    else if (name == "room")
+        room = v::make_light_room(reflectance(o, 0.5));
     if (!room.polygons.empty()) {
         room.source = "builtin:" + name;
         return room;
     }
     Scene s;
-    if (name == "cornell") s = cornell(o);
-    else if (name == "cube") s = box(o, false);
-    else if (name == "furnace") s = box(o, true);
-    else if (name == "sphere") s = sphere(o);
+    if (name == "cornell")
+        s = cornell(o);
+    else if (name == "cube")
+        s = box(o, false);
+    else if (name == "furnace")
+        s = box(o, true);
+    else if (name == "sphere")
+        s = sphere(o);
     else
         throw InputError("unknown built-in scene '" + name + "' (built-in: " + builtin_names() +
                          ")");

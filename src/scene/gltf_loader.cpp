@@ -132,8 +132,7 @@ class GltfReader {
         std::string unread;
         for (const std::string& e : m_.extensionsUsed)
             if (e != "KHR_materials_emissive_strength") unread += (unread.empty() ? "" : ", ") + e;
-        if (!unread.empty())
-            warnings_.push_back(path_ + ": extensions not read: " + unread);
+        if (!unread.empty()) warnings_.push_back(path_ + ": extensions not read: " + unread);
         for (const std::string& e : m_.extensionsRequired)
             if (e != "KHR_materials_emissive_strength")
                 warnings_.push_back(path_ + ": the file requires extension " + e +

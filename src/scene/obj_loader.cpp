@@ -190,7 +190,7 @@ class Notes {
 
 struct MtlMaterial {
     Material m;
-    std::string place; ///< file:line of its newmtl
+    std::string place;          ///< file:line of its newmtl
     std::string map_kd{};       ///< the texture file named by map_Kd, resolved; "" = none
     std::string map_kd_place{}; ///< file:line of the map_Kd
     bool has_kd = false;

@@ -11,7 +11,9 @@
 
 namespace hemirad {
 
-dvec3 Material::exitance() const { return std::numbers::pi * Ke; }
+dvec3 Material::exitance() const {
+    return std::numbers::pi * Ke;
+}
 
 dvec3 Polygon::centroid() const {
     dvec3 c(0.0);
@@ -99,7 +101,10 @@ AddResult add_polygon(Scene& s, const std::vector<dvec3>& corners, std::uint32_t
         if (corner_uv) uvs.pop_back();
     }
     const CornerUV uv{corner_uv ? &uvs : nullptr};
-    if (v.size() < 3) { r.degenerate = true; return r; }
+    if (v.size() < 3) {
+        r.degenerate = true;
+        return r;
+    }
     if (v.size() == 3) {
         r.added = add_triangle(s, v, 0, 1, 2, material, group, uv) ? 1 : 0;
         r.degenerate = r.added == 0;
@@ -117,7 +122,10 @@ AddResult add_polygon(Scene& s, const std::vector<dvec3>& corners, std::uint32_t
     const double len = glm::length(nn);
     double scale = 0;
     for (int i = 0; i < 4; ++i) scale = std::max(scale, glm::length(v[(i + 1) % 4] - v[i]));
-    if (!(len > 1e-12 * scale * scale)) { r.degenerate = true; return r; }
+    if (!(len > 1e-12 * scale * scale)) {
+        r.degenerate = true;
+        return r;
+    }
     const dvec3 n = nn / len;
     // Planar: every corner within tolerance (relative to size) of the mean plane.
     const dvec3 centre = (v[0] + v[1] + v[2] + v[3]) / 4.0;
@@ -234,7 +242,9 @@ std::size_t Scene::triangle_count() const {
     return n;
 }
 
-std::size_t Scene::quad_count() const { return polygons.size() - triangle_count(); }
+std::size_t Scene::quad_count() const {
+    return polygons.size() - triangle_count();
+}
 
 int Scene::find_group(const std::string& name) const {
     for (std::size_t i = 0; i < groups.size(); ++i)

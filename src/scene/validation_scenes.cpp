@@ -16,8 +16,7 @@ struct Builder {
 
     std::uint32_t material(const std::string& name, double rho, double exitance = 0) {
         // Emitted radiance Ke = exitance / pi (scene.h: exitance = pi*Ke).
-        scene.materials.push_back(
-            Material{name, dvec3(rho), dvec3(exitance / std::numbers::pi)});
+        scene.materials.push_back(Material{name, dvec3(rho), dvec3(exitance / std::numbers::pi)});
         return std::uint32_t(scene.materials.size() - 1);
     }
     std::uint32_t group(const std::string& name) {
@@ -33,8 +32,8 @@ struct Builder {
         add_polygon(scene, c, m, g);
     }
     // Horizontal rectangle at height y facing up (+1) or down (-1).
-    void horizontal(double x0, double x1, double z0, double z1, double y, int up,
-                    std::uint32_t m, std::uint32_t g) {
+    void horizontal(double x0, double x1, double z0, double z1, double y, int up, std::uint32_t m,
+                    std::uint32_t g) {
         quad({{x0, y, z0}, {x1, y, z0}, {x1, y, z1}, {x0, y, z1}}, dvec3(0, up, 0), m, g);
     }
     // Closed box [lo, hi], six quads facing outwards.
@@ -57,11 +56,9 @@ struct Builder {
         horizontal(0, W, 0, D, 0, +1, floor_m, group("floor"));
         const auto gw = [&](const char* name) { return group(walls_one_group ? "walls" : name); };
         quad({{0, 0, 0}, {0, H, 0}, {0, H, D}, {0, 0, D}}, dvec3(1, 0, 0), wall_m, gw("wall_x0"));
-        quad({{W, 0, 0}, {W, H, 0}, {W, H, D}, {W, 0, D}}, dvec3(-1, 0, 0), wall_m,
-             gw("wall_x1"));
+        quad({{W, 0, 0}, {W, H, 0}, {W, H, D}, {W, 0, D}}, dvec3(-1, 0, 0), wall_m, gw("wall_x1"));
         quad({{0, 0, 0}, {W, 0, 0}, {W, H, 0}, {0, H, 0}}, dvec3(0, 0, 1), wall_m, gw("wall_z0"));
-        quad({{0, 0, D}, {W, 0, D}, {W, H, D}, {0, H, D}}, dvec3(0, 0, -1), wall_m,
-             gw("wall_z1"));
+        quad({{0, 0, D}, {W, 0, D}, {W, H, D}, {0, H, D}}, dvec3(0, 0, -1), wall_m, gw("wall_z1"));
         const auto gc = group("ceiling");
         if (!hole) {
             horizontal(0, W, 0, D, H, -1, ceiling_m, gc);

@@ -18,9 +18,11 @@ namespace {
 
 constexpr int kPenumbraSplit = 2; ///< a penumbra cell is re-sampled 4^2 = 16 times finer
 constexpr int kMaxCellLevel = 3;  ///< at most 8 x 8 coarse cells, 32 x 32 fine ones
-constexpr double kNearLeaves = 3;  ///< hits nearer than this many leaf sizes: evaluated at the hit
+constexpr double kNearLeaves = 3; ///< hits nearer than this many leaf sizes: evaluated at the hit
 
-bool nonzero(const dvec3& v) { return v.x > 0 || v.y > 0 || v.z > 0; }
+bool nonzero(const dvec3& v) {
+    return v.x > 0 || v.y > 0 || v.z > 0;
+}
 
 } // namespace
 
@@ -63,8 +65,8 @@ dvec3 FinalGather::direct(const dvec3& x, const dvec3& n, std::uint32_t self,
         near = std::max(near, 1e-12);
         const double cells = std::sqrt(P.area) / (near * options_.emitter_angle);
         // Bounded: a point right beside an emitter would otherwise ask for millions of cells.
-        const int level = std::clamp(int(std::ceil(std::log2(std::max(cells, 1.0)))), 0,
-                                     kMaxCellLevel);
+        const int level =
+            std::clamp(int(std::ceil(std::log2(std::max(cells, 1.0)))), 0, kMaxCellLevel);
         const std::uint32_t count = 1u << (2 * level);
         const auto visible = [&](const PatchGeometry& g) {
             dvec3 y = g.centre;

@@ -14,7 +14,9 @@ namespace hemirad {
 
 namespace {
 
-double lum(const dvec3& E) { return luminance(E.x, E.y, E.z); }
+double lum(const dvec3& E) {
+    return luminance(E.x, E.y, E.z);
+}
 
 int parse_count(const std::string& s, const std::string& text) {
     if (s.empty() || s.size() > 6 || s.find_first_not_of("0123456789") != std::string::npos)
@@ -73,7 +75,8 @@ std::vector<std::uint32_t> grid_polygons(const Scene& scene, const GridSpec& spe
         if (!planar)
             throw InputError("--grid: surface group '" + spec.group + "' is not planar: polygon " +
                              std::to_string(p) + " is not in the plane of polygon " +
-                             std::to_string(polys[0]) + " (or faces another way); a grid needs "
+                             std::to_string(polys[0]) +
+                             " (or faces another way); a grid needs "
                              "coplanar polygons");
     }
     return polys;
@@ -116,7 +119,9 @@ GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec, const FinalGa
         a = std::clamp(a, 0, n - 1);
         b = std::clamp(b, 0, n - 1);
     };
-    struct Box { int i0, i1, j0, j1; };
+    struct Box {
+        int i0, i1, j0, j1;
+    };
     std::vector<Box> boxes(polys.size());
     std::vector<std::uint32_t> start(std::size_t(nx) * ny + 1, 0);
     for (std::size_t k = 0; k < polys.size(); ++k) {

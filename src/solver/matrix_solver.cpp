@@ -35,7 +35,8 @@ MatrixSolution solve_matrix(const Scene& scene, const Discretisation& disc,
         sh.normal = poly.normal;
         sh.unshot_power = 1;
         provider.shoot(sh, links);
-        for (const Link& l : links) gather[index_of(l.receiver)].push_back({std::uint32_t(i), l.ff});
+        for (const Link& l : links)
+            gather[index_of(l.receiver)].push_back({std::uint32_t(i), l.ff});
     }
     std::vector<dvec3> E(n), rho(n);
     for (std::size_t j = 0; j < n; ++j) {

@@ -16,7 +16,7 @@ struct MatrixSolution {
     std::vector<dvec3> B;             ///< radiosity per leaf [W unit^-2]
     std::vector<dvec3> H;             ///< irradiance per leaf [W unit^-2]
     int iterations = 0;
-    double residual = 0;              ///< max |B - E - rho F B| / max B after the last sweep
+    double residual = 0; ///< max |B - E - rho F B| / max B after the last sweep
 };
 
 /// Builds F(j -> i) between all leaves with `provider` (linked at leaves) and solves.

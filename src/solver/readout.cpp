@@ -83,8 +83,10 @@ GroupIrradiance group_irradiance(const Hierarchy& h, std::uint32_t group) {
             g.E_max = glm::max(g.E_max, E);
         }
     }
-    if (g.area > 0) g.E_avg = weighted / g.area;
-    else g.E_min = g.E_max = dvec3(0.0);
+    if (g.area > 0)
+        g.E_avg = weighted / g.area;
+    else
+        g.E_min = g.E_max = dvec3(0.0);
     return g;
 }
 

@@ -28,7 +28,7 @@ std::uint64_t fnv1a(const char* data, std::size_t size) {
 // --- little-endian encoding -------------------------------------------------------------------
 
 class Writer {
-public:
+  public:
     void u8(std::uint8_t v) { out_.push_back(char(v)); }
     void u32(std::uint32_t v) {
         for (int i = 0; i < 4; ++i) out_.push_back(char((v >> (8 * i)) & 0xff));
@@ -48,20 +48,20 @@ public:
     void raw(const char* p, std::size_t n) { out_.append(p, n); }
     std::string& bytes() { return out_; }
 
-private:
+  private:
     std::string out_;
 };
 
 class Reader {
-public:
+  public:
     Reader(const std::string& bytes, std::size_t end, const std::string& path)
         : b_(bytes), end_(end), path_(path) {}
     void need(std::size_t n, const char* what) {
         if (end_ - pos_ < n)
-            throw InputError(path_, 0, "truncated solution file: " + std::to_string(n) +
-                                           " bytes of " + what + " expected at byte " +
-                                           std::to_string(pos_) + ", " +
-                                           std::to_string(end_ - pos_) + " left");
+            throw InputError(path_, 0,
+                             "truncated solution file: " + std::to_string(n) + " bytes of " + what +
+                                 " expected at byte " + std::to_string(pos_) + ", " +
+                                 std::to_string(end_ - pos_) + " left");
     }
     std::uint8_t u8(const char* what) {
         need(1, what);
@@ -104,14 +104,14 @@ public:
     /// A count of items of `item_size` bytes each that must fit in what is left.
     std::uint64_t count(std::uint64_t n, std::size_t item_size, const char* what) {
         if (item_size > 0 && n > (end_ - pos_) / item_size)
-            throw InputError(path_, 0, "corrupt solution file: " + std::to_string(n) + " " +
-                                           what + " at byte " + std::to_string(pos_) +
-                                           " do not fit in the file");
+            throw InputError(path_, 0,
+                             "corrupt solution file: " + std::to_string(n) + " " + what +
+                                 " at byte " + std::to_string(pos_) + " do not fit in the file");
         return n;
     }
     std::size_t pos() const { return pos_; }
 
-private:
+  private:
     const std::string& b_;
     std::size_t end_;
     std::size_t pos_ = 0;
@@ -167,8 +167,8 @@ void apply_solution_option(SolverOptions& o, const SolutionOption& option,
     const std::string& name = option.first;
     const std::string& text = option.second;
     const auto bad = [&]() {
-        return InputError(file, 0, "saved option " + name + " has a malformed value '" + text +
-                                       "'");
+        return InputError(file, 0,
+                          "saved option " + name + " has a malformed value '" + text + "'");
     };
     const auto dbl = [&](double& out) {
         char* end = nullptr;
@@ -188,39 +188,60 @@ void apply_solution_option(SolverOptions& o, const SolutionOption& option,
     };
     GpuProviderOptions& g = o.provider.gpu;
     CpuProviderOptions& c = o.provider.cpu;
-    if (name == "--ff") o.ff = text;
-    else if (name == "--patch-size") dbl(o.hierarchy.patch_size);
-    else if (name == "--max-depth") integer(o.hierarchy.max_depth);
-    else if (name == "--shooter-power") dbl(o.shooter_power_fraction);
-    else if (name == "--shooter-size") dbl(o.shooter_min_size);
-    else if (name == "--shooter-max-size") dbl(o.shooter_max_size);
-    else if (name == "--flat") boolean(o.flat);
+    if (name == "--ff")
+        o.ff = text;
+    else if (name == "--patch-size")
+        dbl(o.hierarchy.patch_size);
+    else if (name == "--max-depth")
+        integer(o.hierarchy.max_depth);
+    else if (name == "--shooter-power")
+        dbl(o.shooter_power_fraction);
+    else if (name == "--shooter-size")
+        dbl(o.shooter_min_size);
+    else if (name == "--shooter-max-size")
+        dbl(o.shooter_max_size);
+    else if (name == "--flat")
+        boolean(o.flat);
     else if (name == "--no-row-guard") {
         bool off = false;
         boolean(off);
         o.row_guard = !off;
-    }
-    else if (name == "--enclosed-fraction") dbl(o.enclosed_fraction);
-    else if (name == "--shooter-parallax") dbl(o.shooter_parallax);
-    else if (name == "--resolution") integer(g.resolution);
-    else if (name == "--min-resolution") integer(g.min_resolution);
-    else if (name == "--max-resolution") integer(g.max_resolution);
-    else if (name == "--lod-bias") dbl(g.lod_bias);
-    else if (name == "--builtin-acos") boolean(g.builtin_acos);
-    else if (name == "--atan-angle") boolean(g.atan_angle);
-    else if (name == "--link-angle") dbl(c.link_angle);
-    else if (name == "--visibility-samples") integer(c.visibility_samples);
-    else if (name == "--gauss-order") integer(c.gauss_order);
-    else if (name == "--sr-rays") integer(c.sr_rays);
-    else if (name == "--sr-points") integer(c.sr_points);
+    } else if (name == "--enclosed-fraction")
+        dbl(o.enclosed_fraction);
+    else if (name == "--shooter-parallax")
+        dbl(o.shooter_parallax);
+    else if (name == "--resolution")
+        integer(g.resolution);
+    else if (name == "--min-resolution")
+        integer(g.min_resolution);
+    else if (name == "--max-resolution")
+        integer(g.max_resolution);
+    else if (name == "--lod-bias")
+        dbl(g.lod_bias);
+    else if (name == "--builtin-acos")
+        boolean(g.builtin_acos);
+    else if (name == "--atan-angle")
+        boolean(g.atan_angle);
+    else if (name == "--link-angle")
+        dbl(c.link_angle);
+    else if (name == "--visibility-samples")
+        integer(c.visibility_samples);
+    else if (name == "--gauss-order")
+        integer(c.gauss_order);
+    else if (name == "--sr-rays")
+        integer(c.sr_rays);
+    else if (name == "--sr-points")
+        integer(c.sr_points);
     else if (name == "--seed") {
         char* end = nullptr;
         const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
         if (text.empty() || *end != '\0') throw bad();
         c.seed = v;
     } else
-        throw InputError(file, 0, "unknown saved option '" + name + "' (saved by a newer "
-                                  "hemirad?)");
+        throw InputError(file, 0,
+                         "unknown saved option '" + name +
+                             "' (saved by a newer "
+                             "hemirad?)");
 }
 
 std::string solution_bytes(const Solver& solver) {
@@ -277,8 +298,9 @@ SolutionFile parse_solution(const std::string& bytes, const std::string& path) {
     std::uint64_t stored = 0;
     for (int i = 0; i < 8; ++i) stored |= std::uint64_t(std::uint8_t(bytes[body + i])) << (8 * i);
     if (stored != fnv1a(bytes.data(), body))
-        throw InputError(path, 0, "corrupt solution file: checksum mismatch (the file was "
-                                  "truncated or changed after it was written)");
+        throw InputError(path, 0,
+                         "corrupt solution file: checksum mismatch (the file was "
+                         "truncated or changed after it was written)");
 
     Reader r(bytes, body, path);
     for (std::size_t i = 0; i < sizeof kMagic; ++i) r.u8("magic");
@@ -329,8 +351,9 @@ SolutionFile parse_solution(const std::string& bytes, const std::string& path) {
         for (dvec3& u : f.state.luminaires) u = r.dvec("luminaire unshot power");
     }
     if (r.pos() != body)
-        throw InputError(path, 0, "corrupt solution file: " + std::to_string(body - r.pos()) +
-                                      " unexpected bytes before the checksum");
+        throw InputError(path, 0,
+                         "corrupt solution file: " + std::to_string(body - r.pos()) +
+                             " unexpected bytes before the checksum");
     return f;
 }
 
@@ -352,10 +375,9 @@ void check_solution_scene(const SolutionFile& file, const std::string& path, con
                           const std::string& scene_path) {
     const std::uint64_t h = scene.content_hash();
     if (file.scene_hash != h)
-        throw InputError(path + ": the solution was saved for another scene: " +
-                         file.scene_source + " (content hash " + hash_text(file.scene_hash) +
-                         "), but " + scene_path + " has content hash " + hash_text(h) +
-                         " (geometry or materials differ)");
+        throw InputError(path + ": the solution was saved for another scene: " + file.scene_source +
+                         " (content hash " + hash_text(file.scene_hash) + "), but " + scene_path +
+                         " has content hash " + hash_text(h) + " (geometry or materials differ)");
 }
 
 void resume_solution(Solver& solver, const SolutionFile& file, const std::string& path) {
@@ -363,8 +385,9 @@ void resume_solution(Solver& solver, const SolutionFile& file, const std::string
     for (const SolutionOption& saved : file.options) {
         for (const SolutionOption& o : now)
             if (o.first == saved.first && o.second != saved.second)
-                throw InputError(path, 0, "saved with " + saved.first + " " + saved.second +
-                                              ", but this solver has " + o.second);
+                throw InputError(path, 0,
+                                 "saved with " + saved.first + " " + saved.second +
+                                     ", but this solver has " + o.second);
     }
     try {
         solver.restore_state(file.state);

@@ -3,8 +3,8 @@
 #include "hemirad/solver.h"
 
 #include <algorithm>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 
 #include "hemirad/error.h"
 #include "hemirad/memory_guard.h"
@@ -24,23 +24,19 @@ void validate_options(const SolverOptions& o) {
     if (!(o.time_limit >= 0))
         throw InputError("--time-limit " + num(o.time_limit) + " must be >= 0");
     if (!(o.shooter_power_fraction > 0 && o.shooter_power_fraction <= 1))
-        throw InputError("--shooter-power " + num(o.shooter_power_fraction) +
-                         " must be in (0, 1]");
+        throw InputError("--shooter-power " + num(o.shooter_power_fraction) + " must be in (0, 1]");
     if (!(o.shooter_max_size >= 0))
-        throw InputError("--shooter-max-size " + num(o.shooter_max_size) +
-                         " must be >= 0");
+        throw InputError("--shooter-max-size " + num(o.shooter_max_size) + " must be >= 0");
     if (!(o.shooter_min_size >= 0))
-        throw InputError("--shooter-size " + num(o.shooter_min_size) +
-                         " must be >= 0");
+        throw InputError("--shooter-size " + num(o.shooter_min_size) + " must be >= 0");
     if (!(o.shooter_parallax >= 0) || std::isinf(o.shooter_parallax))
         throw InputError("--shooter-parallax " + num(o.shooter_parallax) +
                          " must be >= 0 (0 = never refine for parallax)");
     if (!(o.enclosed_fraction > 0 && o.enclosed_fraction <= 1))
-        throw InputError("--enclosed-fraction " + num(o.enclosed_fraction) +
-                         " must be in (0, 1]");
+        throw InputError("--enclosed-fraction " + num(o.enclosed_fraction) + " must be in (0, 1]");
     if (o.hierarchy.max_depth < 0 || o.hierarchy.max_depth > kMaxDepth)
-        throw InputError("--max-depth " + std::to_string(o.hierarchy.max_depth) + " must be in 0.." +
-                         std::to_string(kMaxDepth));
+        throw InputError("--max-depth " + std::to_string(o.hierarchy.max_depth) +
+                         " must be in 0.." + std::to_string(kMaxDepth));
     if (is_gpu_provider(o.ff)) validate_gpu_options(o.provider.gpu);
 }
 
@@ -52,7 +48,9 @@ std::uint8_t parallax_code(double p) {
     const double c = 2 + std::round(16 * std::log2(std::max(p, 1e-4) / 1e-4));
     return std::uint8_t(std::clamp(c, 2.0, 255.0));
 }
-double code_parallax(std::uint8_t code) { return 1e-4 * std::exp2((code - 2) / 16.0); }
+double code_parallax(std::uint8_t code) {
+    return 1e-4 * std::exp2((code - 2) / 16.0);
+}
 
 bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -72,11 +70,16 @@ Discretisation guarded_discretise(const Scene& scene, const SolverOptions& optio
 
 const char* to_string(StopReason r) {
     switch (r) {
-    case StopReason::Running: return "running";
-    case StopReason::Converged: return "converged";
-    case StopReason::MaxShots: return "max-shots";
-    case StopReason::TimeLimit: return "time-limit";
-    case StopReason::NothingToShoot: return "nothing-to-shoot";
+    case StopReason::Running:
+        return "running";
+    case StopReason::Converged:
+        return "converged";
+    case StopReason::MaxShots:
+        return "max-shots";
+    case StopReason::TimeLimit:
+        return "time-limit";
+    case StopReason::NothingToShoot:
+        return "nothing-to-shoot";
     }
     return "?";
 }
@@ -117,7 +120,9 @@ void Solver::init() {
     check_stop();
 }
 
-double Solver::seconds() const { return seconds_; }
+double Solver::seconds() const {
+    return seconds_;
+}
 
 dvec3 Solver::unshot_power() const {
     dvec3 u = hierarchy_.total_unshot_power();
@@ -133,16 +138,21 @@ double Solver::unshot_fraction() const {
     return f;
 }
 
-double Solver::error_bound() const { return unshot_fraction() / (1.0 - rho_max_); }
+double Solver::error_bound() const {
+    return unshot_fraction() / (1.0 - rho_max_);
+}
 
 void Solver::check_stop() {
-    if (error_bound() <= options_.tolerance) stop_ = StopReason::Converged;
-    else if (shots_ >= options_.max_shots) stop_ = StopReason::MaxShots;
+    if (error_bound() <= options_.tolerance)
+        stop_ = StopReason::Converged;
+    else if (shots_ >= options_.max_shots)
+        stop_ = StopReason::MaxShots;
     else if (options_.time_limit > 0 && seconds_ >= options_.time_limit)
         stop_ = StopReason::TimeLimit;
     else if (sum(unshot_power()) <= 0)
         stop_ = StopReason::NothingToShoot;
-    else stop_ = StopReason::Running;
+    else
+        stop_ = StopReason::Running;
 }
 
 PatchAddress Solver::select_shooter(std::uint32_t polygon) {
@@ -245,8 +255,10 @@ PatchAddress Solver::shoot_patch(std::uint32_t polygon, ShotRecord& rec, dvec3& 
         for (const FormFactorProvider::Timing& t : provider_->last_timings()) {
             auto it = std::find_if(rec.ff_phases.begin(), rec.ff_phases.end(),
                                    [&](const auto& p) { return !std::strcmp(p.phase, t.phase); });
-            if (it == rec.ff_phases.end()) rec.ff_phases.push_back(t);
-            else it->seconds += t.seconds;
+            if (it == rec.ff_phases.end())
+                rec.ff_phases.push_back(t);
+            else
+                it->seconds += t.seconds;
         }
         // An enclosed centre would lose the patch's power, and a centre beside a near
         // occluder would misplace it (parallax): shoot the children instead.

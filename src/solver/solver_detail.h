@@ -16,6 +16,8 @@ inline double since(Clock::time_point t0) {
 }
 
 /// Sum of the RGB channels (a power or radiosity summed over the spectrum).
-inline double sum(const glm::dvec3& v) { return v.x + v.y + v.z; }
+inline double sum(const glm::dvec3& v) {
+    return v.x + v.y + v.z;
+}
 
 } // namespace hemirad::solver_detail

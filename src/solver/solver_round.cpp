@@ -20,16 +20,16 @@ using solver_detail::sum;
 
 /// What a rank tells the others about its shot (fixed size, then the links and view codes).
 struct ShotHeader {
-    std::int32_t kind = 0;       ///< 0 nothing shot, 1 a patch, 2 a luminaire
+    std::int32_t kind = 0; ///< 0 nothing shot, 1 a patch, 2 a luminaire
     std::int32_t luminaire = -1;
     PatchAddress shooter;
     std::int32_t refined = 0;
-    double dB[3] = {0, 0, 0};    ///< unshot radiosity shot (a luminaire: its power)
-    double area = 0;             ///< shooter area (a luminaire: 1)
+    double dB[3] = {0, 0, 0}; ///< unshot radiosity shot (a luminaire: its power)
+    double area = 0;          ///< shooter area (a luminaire: 1)
     double shooter_power = 0;
     double parallax = -1;
     double t_select = 0, t_push_pull = 0, t_form_factors = 0;
-    double seconds = 0;          ///< the sender's solve time when it sent
+    double seconds = 0; ///< the sender's solve time when it sent
     std::uint64_t links = 0, learned = 0, provider = 0;
 };
 static_assert(std::is_trivially_copyable_v<ShotHeader>);
@@ -49,7 +49,7 @@ template <class T> void put(std::vector<std::uint8_t>& out, const T* v, std::siz
 }
 
 class Reader {
-public:
+  public:
     explicit Reader(const std::vector<std::uint8_t>& b) : b_(b) {}
     template <class T> void get(T* v, std::size_t n) {
         HEMIRAD_CHECK(n <= (b_.size() - at_) / sizeof(T));
@@ -59,7 +59,7 @@ public:
     }
     bool done() const { return at_ == b_.size(); }
 
-private:
+  private:
     const std::vector<std::uint8_t>& b_;
     std::size_t at_ = 0;
 };
@@ -267,10 +267,10 @@ std::uint64_t Solver::state_checksum() const {
     f.add(luminaire_unshot_.data(), luminaire_unshot_.size());
     const std::vector<double> provider = provider_->save_state();
     f.add(provider.data(), provider.size());
-    const double counters[] = {double(shots_), absorbed_.x, absorbed_.y, absorbed_.z,
-                               escaped_.x,     escaped_.y,  escaped_.z,  row_min_,
-                               row_max_,       row_total_,  double(row_guarded_),
-                               double(last_polygon_)};
+    const double counters[] = {
+        double(shots_), absorbed_.x, absorbed_.y,          absorbed_.z,
+        escaped_.x,     escaped_.y,  escaped_.z,           row_min_,
+        row_max_,       row_total_,  double(row_guarded_), double(last_polygon_)};
     f.add(counters, std::size(counters));
     return f.h;
 }

@@ -13,11 +13,12 @@ std::vector<Probe> surface_points(const Scene& scene, std::size_t count, std::ui
     std::vector<Probe> out;
     const double total = scene.total_area();
     if (!(total > 0)) return out;
-    constexpr double kInset = 1e-3; // keep points off the edges, where a polygon's side is ambiguous
+    constexpr double kInset =
+        1e-3; // keep points off the edges, where a polygon's side is ambiguous
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
         const Polygon& poly = scene.polygons[p];
-        const long share = std::max<long>(
-            min_per_polygon, std::lround(double(count) * poly.area / total));
+        const long share =
+            std::max<long>(min_per_polygon, std::lround(double(count) * poly.area / total));
         const int m = std::max(1, int(std::ceil(std::sqrt(double(share)))));
         Rng rng(splitmix64(seed ^ splitmix64(p)));
         // Jittered m x m strata, `share` of them taken in a fixed scrambled order.
@@ -46,8 +47,8 @@ std::string probe_points_csv(const std::vector<Probe>& probes) {
     s.precision(12);
     s << "x,y,z,nx,ny,nz\n";
     for (const Probe& p : probes)
-        s << p.position.x << "," << p.position.y << "," << p.position.z << "," << p.normal.x
-          << "," << p.normal.y << "," << p.normal.z << "\n";
+        s << p.position.x << "," << p.position.y << "," << p.position.z << "," << p.normal.x << ","
+          << p.normal.y << "," << p.normal.z << "\n";
     return s.str();
 }
 

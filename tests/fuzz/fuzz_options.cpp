@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "fuzz_util.h"
 #include "cli/cli_options.h"
+#include "fuzz_util.h"
 #include "hemirad/error.h"
 #include "hemirad/grid.h"
 #include "hemirad/memory_guard.h"

@@ -26,7 +26,6 @@
 
 #include "cli/args.h"
 #include "hemirad/error.h"
-#include "mpi_scaling.h"
 #include "hemirad/gather.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/json.h"
@@ -37,6 +36,7 @@
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"
 #include "hemirad/validation_scenes.h"
+#include "mpi_scaling.h"
 
 // The bare hemicube is measured with the renderer itself where the build exposes src/ to
 // this tool (target_include_directories(hemirad-bench PRIVATE src)); otherwise from the
@@ -53,7 +53,9 @@ using namespace hemirad;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 // Peak resident set of this process [MiB] (VmHWM; ru_maxrss as the fallback).
 double peak_rss_mib() {
@@ -81,8 +83,10 @@ double patch_size_for(const Scene& scene, double target, int max_depth) {
     double lo = 1e-4 * scene.bounds().diagonal(), hi = scene.bounds().diagonal();
     for (int i = 0; i < 60; ++i) {
         const double mid = std::sqrt(lo * hi);
-        if (double(leaves_for(scene, mid, max_depth)) > target) lo = mid;
-        else hi = mid;
+        if (double(leaves_for(scene, mid, max_depth)) > target)
+            lo = mid;
+        else
+            hi = mid;
     }
     // Leaf counts jump in factors of ~4 per polygon: take the nearer of the two sides.
     const double a = double(leaves_for(scene, lo, max_depth));
@@ -93,25 +97,29 @@ double patch_size_for(const Scene& scene, double target, int max_depth) {
 struct Spec {
     std::string name, description;
     std::function<Scene()> scene;
-    double target_leaves = 0;  ///< leaf patches to aim for
+    double target_leaves = 0; ///< leaf patches to aim for
     int max_depth = 8;
-    long shots = 0;            ///< fixed number of shots (0: solve to the tolerance)
+    long shots = 0; ///< fixed number of shots (0: solve to the tolerance)
     double tolerance = 0.01;
-    double time_limit = 0;     ///< [s], 0 = none
+    double time_limit = 0; ///< [s], 0 = none
     std::string ff = "hybrid";
     bool flat = false;
-    int resolution = 0;        ///< fixed hemicube resolution (0 = adaptive)
+    int resolution = 0; ///< fixed hemicube resolution (0 = adaptive)
     double paper_seconds = 0, goal_seconds = 0;
-    bool overhead = false;     ///< also measure the bare hemicube (shot_overhead_ratio)
-    bool accuracy = false;     ///< accuracy at points against `hemirad reference` instead
-    bool soak = false;         ///< a long run: resident memory, GL objects, log (run_soak)
+    bool overhead = false; ///< also measure the bare hemicube (shot_overhead_ratio)
+    bool accuracy = false; ///< accuracy at points against `hemirad reference` instead
+    bool soak = false;     ///< a long run: resident memory, GL objects, log (run_soak)
     /// Real sizes: the scene is written to an OBJ file first (not timed), and what is timed
     /// is loading that file as a user's would be; one 1024 x 768 view is rendered at the end.
     bool from_obj_file = false;
 };
 
-validation::BenchRoomOptions room402() { return {2, 6, 7, 0.6}; }
-validation::BenchRoomOptions room3138() { return {17, 6, 28, 0.6}; }
+validation::BenchRoomOptions room402() {
+    return {2, 6, 7, 0.6};
+}
+validation::BenchRoomOptions room3138() {
+    return {17, 6, 28, 0.6};
+}
 
 std::vector<Spec> experiments() {
     std::vector<Spec> v;
@@ -128,12 +136,12 @@ std::vector<Spec> experiments() {
     const double cornell_leaves = 50000;
     v.push_back({"cornell_hierarchical", "Cornell box, ~50k leaves, to a 1 % bound, hybrid",
                  cornell, cornell_leaves, 8, 0, 0.01, 60, "hybrid"});
-    v.push_back({"cornell_flat", "as cornell_hierarchical, shooting from leaves only",
-                 cornell, cornell_leaves, 8, 0, 0.01, 60, "hybrid", true});
+    v.push_back({"cornell_flat", "as cornell_hierarchical, shooting from leaves only", cornell,
+                 cornell_leaves, 8, 0, 0.01, 60, "hybrid", true});
     v.push_back({"cornell_hemicube", "as cornell_hierarchical, classic hemicube form factors",
                  cornell, cornell_leaves, 8, 0, 0.01, 60, "hemicube"});
-    v.push_back({"cornell_analytic", "as cornell_hierarchical, analytic form factors",
-                 cornell, cornell_leaves, 8, 0, 0.01, 60, "analytic"});
+    v.push_back({"cornell_analytic", "as cornell_hierarchical, analytic form factors", cornell,
+                 cornell_leaves, 8, 0, 0.01, 60, "analytic"});
     // Accuracy at ~400 points on every surface against the path-traced reference, with the
     // default options and a few others (run_accuracy).
     Spec acc{"cornell_accuracy", "Cornell box: default solve + gather vs reference at 400 points",
@@ -172,7 +180,14 @@ std::vector<Spec> experiments() {
                "furnished floor of ~1e" + std::to_string(e) +
                    " triangles from an OBJ file, 16 shots, res 256, one view",
                [triangles] { return validation::make_furnished_floor(triangles); },
-               2.0 * double(triangles), 4, 16, 0.01, 0, "hybrid", false, 256};
+               2.0 * double(triangles),
+               4,
+               16,
+               0.01,
+               0,
+               "hybrid",
+               false,
+               256};
         s.from_obj_file = true;
         v.push_back(s);
     }
@@ -194,7 +209,9 @@ struct Sums {
     double links = 0;
 };
 
-double luminance(const dvec3& e) { return 0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z; }
+double luminance(const dvec3& e) {
+    return 0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z;
+}
 
 double percentile(std::vector<double> v, double q) {
     if (v.empty()) return 0;
@@ -218,7 +235,8 @@ void run_accuracy(const Spec& spec) {
     const std::vector<ReferenceValue> ref = reference_irradiance(scene, probes, ro);
     const double ref_seconds = since(t_ref);
     std::vector<double> ys, sems;
-    for (const ReferenceValue& r : ref) ys.push_back(luminance(r.E)), sems.push_back(luminance(r.sem));
+    for (const ReferenceValue& r : ref)
+        ys.push_back(luminance(r.E)), sems.push_back(luminance(r.sem));
     const double dark = 0.01 * percentile(ys, 0.5);
     std::vector<double> rel_sem;
     for (std::size_t k = 0; k < ys.size(); ++k)
@@ -231,11 +249,14 @@ void run_accuracy(const Spec& spec) {
     const std::vector<Setting> settings = {
         {"default", [](SolverOptions&, GatherOptions&, bool&) {}},
         {"--gather off", [](SolverOptions&, GatherOptions&, bool& g) { g = false; }},
-        {"--shooter-parallax 0", [](SolverOptions& o, GatherOptions&, bool&) { o.shooter_parallax = 0; }},
+        {"--shooter-parallax 0",
+         [](SolverOptions& o, GatherOptions&, bool&) { o.shooter_parallax = 0; }},
         {"--shooter-parallax 0 --gather off",
          [](SolverOptions& o, GatherOptions&, bool& g) { o.shooter_parallax = 0, g = false; }},
-        {"--shooter-parallax 1e-3", [](SolverOptions& o, GatherOptions&, bool&) { o.shooter_parallax = 1e-3; }},
-        {"--shooter-parallax 3e-3", [](SolverOptions& o, GatherOptions&, bool&) { o.shooter_parallax = 3e-3; }},
+        {"--shooter-parallax 1e-3",
+         [](SolverOptions& o, GatherOptions&, bool&) { o.shooter_parallax = 1e-3; }},
+        {"--shooter-parallax 3e-3",
+         [](SolverOptions& o, GatherOptions&, bool&) { o.shooter_parallax = 3e-3; }},
         {"--gather-rays 256", [](SolverOptions&, GatherOptions& g, bool&) { g.rays = 256; }},
         {"--gather-rays 4096", [](SolverOptions&, GatherOptions& g, bool&) { g.rays = 4096; }},
         {"--tolerance 3e-3", [](SolverOptions& o, GatherOptions&, bool&) { o.tolerance = 3e-3; }},
@@ -483,7 +504,8 @@ void run_child(const Spec& spec) {
     std::uintmax_t obj_bytes = 0;
     if (spec.from_obj_file) {
         obj_path = (std::filesystem::temp_directory_path() /
-                    ("hemirad-bench-" + std::to_string(getpid()) + ".obj")).string();
+                    ("hemirad-bench-" + std::to_string(getpid()) + ".obj"))
+                       .string();
         write_obj(spec.scene(), obj_path);
         obj_bytes = std::filesystem::file_size(obj_path);
     }
@@ -520,10 +542,14 @@ void run_child(const Spec& spec) {
         sum.update += r.t_update;
         sum.links += double(r.links);
         for (const auto& p : r.ff_phases) {
-            if (!std::strcmp(p.phase, "render")) sum.render += p.seconds;
-            else if (!std::strcmp(p.phase, "cull")) sum.cull += p.seconds;
-            else if (!std::strcmp(p.phase, "readback")) sum.readback += p.seconds;
-            else if (!std::strcmp(p.phase, "reduce")) sum.reduce += p.seconds;
+            if (!std::strcmp(p.phase, "render"))
+                sum.render += p.seconds;
+            else if (!std::strcmp(p.phase, "cull"))
+                sum.cull += p.seconds;
+            else if (!std::strcmp(p.phase, "readback"))
+                sum.readback += p.seconds;
+            else if (!std::strcmp(p.phase, "reduce"))
+                sum.reduce += p.seconds;
         }
         if (spec.overhead && r.luminaire < 0) {
             Shooter s;
@@ -603,8 +629,7 @@ void run_child(const Spec& spec) {
         const char* method = "provider_phases";
 #if HEMIRAD_BENCH_BARE_RENDERER
         method = "HemicubeRenderer";
-        gpu::HemicubeRenderer renderer(scene, solver.hierarchy().discretisation(),
-                                       spec.resolution);
+        gpu::HemicubeRenderer renderer(scene, solver.hierarchy().discretisation(), spec.resolution);
         const gpu::HemicubeLayout layout = gpu::make_hemicube_layout(spec.resolution);
         std::vector<float> rgba;
         renderer.render(shooters.front(), layout, 0.0, false); // first-draw code generation
@@ -652,8 +677,8 @@ void run_child(const Spec& spec) {
                 (unsigned long long)solver.hierarchy().leaf_count(), shots, seconds,
                 1e3 * seconds / n, solver.error_bound(), 1e3 * sum.select / n,
                 1e3 * sum.push_pull / n, 1e3 * sum.render / n, 1e3 * sum.readback / n,
-                1e3 * sum.reduce / n, 1e3 * sum.update / n, 1e3 * setup_seconds,
-                peak_rss_mib(), note);
+                1e3 * sum.reduce / n, 1e3 * sum.update / n, 1e3 * setup_seconds, peak_rss_mib(),
+                note);
     std::fflush(stdout);
 }
 
@@ -697,8 +722,8 @@ int run(int argc, char** argv) {
             if (!s.soak) chosen.push_back(&s); // minutes long: only when asked for
     } else {
         for (const std::string& name : split(only)) {
-            auto it = std::find_if(all.begin(), all.end(),
-                                   [&](const Spec& s) { return s.name == name; });
+            auto it =
+                std::find_if(all.begin(), all.end(), [&](const Spec& s) { return s.name == name; });
             if (it == all.end()) {
                 std::string names;
                 for (const Spec& s : all) names += (names.empty() ? "" : ", ") + s.name;
@@ -715,9 +740,8 @@ int run(int argc, char** argv) {
 
     if (!quiet) {
         auto context = gl::Context::create();
-        std::fprintf(stderr, "hemirad-bench: OpenGL %s: %s (%s)\n",
-                     context->backend_name().c_str(), context->renderer().c_str(),
-                     context->vendor().c_str());
+        std::fprintf(stderr, "hemirad-bench: OpenGL %s: %s (%s)\n", context->backend_name().c_str(),
+                     context->renderer().c_str(), context->vendor().c_str());
     }
     const std::string self = self_path();
     std::vector<std::string> jsons, rows;
@@ -737,8 +761,10 @@ int run(int argc, char** argv) {
         while (std::fgets(line, sizeof line, p)) {
             std::string l(line);
             while (!l.empty() && (l.back() == '\n' || l.back() == '\r')) l.pop_back();
-            if (l.rfind("JSON ", 0) == 0) jsons.push_back(l.substr(5)), got = true;
-            else if (l.rfind("RATIO ", 0) == 0) ratio = std::atof(l.c_str() + 6);
+            if (l.rfind("JSON ", 0) == 0)
+                jsons.push_back(l.substr(5)), got = true;
+            else if (l.rfind("RATIO ", 0) == 0)
+                ratio = std::atof(l.c_str() + 6);
             else if (l.rfind("ROW ", 0) == 0) {
                 rows.push_back(l.substr(4));
                 if (!quiet) std::fprintf(stderr, "    %s\n", l.c_str() + 4);
@@ -749,8 +775,7 @@ int run(int argc, char** argv) {
             throw RuntimeError("hemirad-bench: experiment " + s.name + " failed (status " +
                                std::to_string(status) + ")");
         if (!quiet)
-            std::fprintf(stderr, "    done in %.1f s (%.0f s so far)\n", since(t0),
-                         since(t_all));
+            std::fprintf(stderr, "    done in %.1f s (%.0f s so far)\n", since(t0), since(t_all));
     }
     std::string doc = "{\n  \"program\": \"hemirad-bench\",\n  \"shot_overhead_ratio\": ";
     char buf[64];

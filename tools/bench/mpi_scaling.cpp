@@ -10,11 +10,11 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <functional>
-#include <utility>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -35,7 +35,8 @@ std::string hemirad_path() {
     if (n <= 0) throw RuntimeError("mpi_scaling: cannot read /proc/self/exe");
     buf[n] = 0;
     const fs::path p = fs::path(buf).parent_path() / "hemirad";
-    if (!fs::exists(p)) throw RuntimeError("mpi_scaling: no hemirad next to hemirad-bench: " + p.string());
+    if (!fs::exists(p))
+        throw RuntimeError("mpi_scaling: no hemirad next to hemirad-bench: " + p.string());
     return p.string();
 }
 
@@ -66,7 +67,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 void run_probe(const char* spec) {
     double sparse = 0, dense = 0;
     if (std::sscanf(spec, "%lf:%lf", &sparse, &dense) != 2 || !(sparse > 0) || !(dense > 0))
-        throw InputError("HEMIRAD_BENCH_MPI_PROBE: '" + std::string(spec) + "' is not SPARSE:DENSE");
+        throw InputError("HEMIRAD_BENCH_MPI_PROBE: '" + std::string(spec) +
+                         "' is not SPARSE:DENSE");
     int argc = 0;
     char** argv = nullptr;
     parallel::World world(argc, argv);
@@ -98,8 +100,8 @@ std::pair<double, double> probe(int ranks, double sparse, double dense) {
     std::string cmd = "HEMIRAD_BENCH_MPI_PROBE=" + std::to_string(sparse) + ":" +
                       std::to_string(dense) + " mpirun --oversubscribe ";
     if (geteuid() == 0) cmd += "--allow-run-as-root ";
-    cmd += "-np " + std::to_string(ranks) + " '" + std::string(buf) +
-           "' --child --only mpi_scaling";
+    cmd +=
+        "-np " + std::to_string(ranks) + " '" + std::string(buf) + "' --child --only mpi_scaling";
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) throw RuntimeError("mpi_scaling: cannot run " + cmd);
     char line[512];
@@ -175,7 +177,8 @@ void run_mpi_scaling() {
                     "group difference "
                     "%.2e vs bounds %.2e: %s\n",
                     ranks, got_ranks, long(r["shots"]), rounds, double(r["seconds"]), bytes, dense,
-                    1e3 * comm, 1e3 * transfer, worst, bound, worst <= bound ? "agrees" : "DISAGREES");
+                    1e3 * comm, 1e3 * transfer, worst, bound,
+                    worst <= bound ? "agrees" : "DISAGREES");
         std::fflush(stdout);
     }
     fs::remove_all(dir);

@@ -8,8 +8,8 @@
 #include <memory>
 #include <set>
 
-#include "commands.h"
 #include "cli/cli_options.h"
+#include "commands.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/json.h"
@@ -66,8 +66,7 @@ SceneResult solve_one(const std::string& scene_name, const fs::path& dir, const 
         const Scene scene = load_scene(scene_name, builtin, obj);
         print_warnings(scene, quiet);
         Solver solver(scene, so);
-        while (!interrupted() && solver.step()) {
-        }
+        while (!interrupted() && solver.step()) {}
         const bool stopped = interrupted();
         fs::create_directories(dir);
         Json report = solve_report(solver);
@@ -138,7 +137,8 @@ int cmd_batch(int argc, char** argv) {
     // The scenes come first (every argument before the first option), then the options.
     std::vector<std::string> scenes;
     int first_option = 2;
-    while (first_option < argc && argv[first_option][0] != '-') scenes.push_back(argv[first_option++]);
+    while (first_option < argc && argv[first_option][0] != '-')
+        scenes.push_back(argv[first_option++]);
     std::string out;
     bool quiet = false;
     SolverOptions so;
@@ -208,8 +208,8 @@ int cmd_batch(int argc, char** argv) {
         put_u64(mine, i);
         put_u64(mine, r.failed ? 1 : 0);
         // The rank goes into the scene's JSON object, before its closing brace.
-        put_string(mine, r.json.substr(0, r.json.size() - 1) + ",\"rank\":" +
-                             std::to_string(world.rank()) + "}");
+        put_string(mine, r.json.substr(0, r.json.size() - 1) +
+                             ",\"rank\":" + std::to_string(world.rank()) + "}");
         put_string(mine, r.row);
     }
 
@@ -222,8 +222,8 @@ int cmd_batch(int argc, char** argv) {
     HEMIRAD_CHECK(results.size() == scenes.size());
     int failed = 0;
     char head[160];
-    std::snprintf(head, sizeof head,
-                  "{\n  \"ranks\": %d,\n  \"seconds\": %.6g,\n  \"scenes\": [\n", world.size(),
+    std::snprintf(head, sizeof head, "{\n  \"ranks\": %d,\n  \"seconds\": %.6g,\n  \"scenes\": [\n",
+                  world.size(),
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     std::string text = head;
     for (const auto& [index, r] : results) {
@@ -236,7 +236,8 @@ int cmd_batch(int argc, char** argv) {
     // Rank 0 printed its own scenes as they ended; now the others', and failures always.
     for (const auto& [index, r] : results)
         if (quiet ? r.failed : index % std::size_t(world.size()) != 0)
-            std::fprintf(stderr, "hemirad: [%zu/%zu] %s\n", index + 1, scenes.size(), r.row.c_str());
+            std::fprintf(stderr, "hemirad: [%zu/%zu] %s\n", index + 1, scenes.size(),
+                         r.row.c_str());
     if (!quiet)
         std::fprintf(stderr, "hemirad: %zu scenes, %d failed, %.2f s; wrote %s\n", scenes.size(),
                      failed,

@@ -47,8 +47,8 @@ int cmd_formfactors(int argc, char** argv) {
     if (g_from < 0) {
         std::string names;
         for (const std::string& g : scene.groups) names += (names.empty() ? "" : ", ") + g;
-        throw InputError("no surface group '" + from + "' in " + scene.source + " (groups: " +
-                         names + ")");
+        throw InputError("no surface group '" + from + "' in " + scene.source +
+                         " (groups: " + names + ")");
     }
     const Discretisation disc = discretise(scene, ho);
     auto provider = make_provider(ff, scene, disc, po);

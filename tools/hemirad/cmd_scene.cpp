@@ -2,8 +2,8 @@
 #include <cstdio>
 #include <iostream>
 
-#include "commands.h"
 #include "cli/cli_options.h"
+#include "commands.h"
 #include "hemirad/error.h"
 #include "hemirad/json.h"
 #include "hemirad/report.h"
@@ -15,7 +15,9 @@ void add_scene_options(ArgParser& args, BuiltinOptions& o, ObjOptions& obj) {
     add_obj_scene_options(args, obj);
 }
 
-void print_warnings(const Scene& scene, bool quiet) { print_scene_warnings("hemirad", scene, quiet); }
+void print_warnings(const Scene& scene, bool quiet) {
+    print_scene_warnings("hemirad", scene, quiet);
+}
 
 int cmd_scene(int argc, char** argv) {
     std::string name, obj_out;

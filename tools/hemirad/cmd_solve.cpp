@@ -8,9 +8,9 @@
 #include <optional>
 #include <sstream>
 
+#include "cli/cli_options.h"
 #include "commands.h"
 #include "export_outputs.h"
-#include "cli/cli_options.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/grid.h"
@@ -107,8 +107,9 @@ int cmd_solve(int argc, char** argv) {
     const bool lead = world.rank() == 0;
     if (!lead) quiet = true;
     if (world.size() == 1 && parallel::World::launched_size() > 1 && !quiet)
-        std::fprintf(stderr, "hemirad: warning: launched as one of %d processes, but built "
-                             "without MPI (HEMIRAD_MPI=OFF): this process solves alone\n",
+        std::fprintf(stderr,
+                     "hemirad: warning: launched as one of %d processes, but built "
+                     "without MPI (HEMIRAD_MPI=OFF): this process solves alone\n",
                      parallel::World::launched_size());
     if (!probes_in.empty() && probes_out.empty())
         throw InputError("--probes needs --probe-out OUT.csv");
@@ -129,8 +130,8 @@ int cmd_solve(int argc, char** argv) {
     // Before the solver is built: a resumed run takes the saved options it was not given.
     const std::optional<SolutionFile> resumed =
         prepare_resume(exports, args, scene, scene_name, so);
-    const std::vector<Probe> probes = probes_in.empty() ? std::vector<Probe>{}
-                                                        : read_probes(probes_in);
+    const std::vector<Probe> probes =
+        probes_in.empty() ? std::vector<Probe>{} : read_probes(probes_in);
     // The memory guard, before GL starts (the Solver checks again: memory_guard.h).
     check_memory(scene, discretise(scene, so.hierarchy), so);
     // One GL context for the whole run: the GPU provider and the image outputs share it.
@@ -159,8 +160,9 @@ int cmd_solve(int argc, char** argv) {
                      (unsigned long long)solver.hierarchy().leaf_count(),
                      solver.provider().name().c_str());
         if (world.size() > 1)
-            std::fprintf(stderr, "hemirad: %d MPI ranks, %d on this machine: up to %d shots a "
-                                 "round\n",
+            std::fprintf(stderr,
+                         "hemirad: %d MPI ranks, %d on this machine: up to %d shots a "
+                         "round\n",
                          world.size(), world.local_size(), world.size());
         if (!scene.luminaires.empty()) {
             double total = 0;
@@ -181,18 +183,20 @@ int cmd_solve(int argc, char** argv) {
     const bool tty = isatty(2) && !quiet;
     auto last_print = std::chrono::steady_clock::now();
     // A signal on any rank stops every rank at the same round.
-    const auto signalled = [&] { return world.size() > 1 ? world.any(interrupted()) : interrupted(); };
+    const auto signalled = [&] {
+        return world.size() > 1 ? world.any(interrupted()) : interrupted();
+    };
     while (!signalled() && solver.step()) {
         const ShotRecord& r = solver.last_shot();
         if (log_file.is_open()) {
-            for (const ShotRecord& s : solver.last_round()) log_file << shot_json(s).dump(0) << "\n";
+            for (const ShotRecord& s : solver.last_round())
+                log_file << shot_json(s).dump(0) << "\n";
             log_file << std::flush;
         }
         const auto now = std::chrono::steady_clock::now();
         if (tty && now - last_print > std::chrono::milliseconds(250)) {
             std::fprintf(stderr, "\rshot %ld  unshot %.3e  error bound %.3e / %.3g  %.1f s   ",
-                         r.shot, r.unshot_fraction, r.error_bound, so.tolerance,
-                         solver.seconds());
+                         r.shot, r.unshot_fraction, r.error_bound, so.tolerance, solver.seconds());
             last_print = now;
         }
     }
@@ -238,8 +242,8 @@ int cmd_solve(int argc, char** argv) {
     if (gather && !quiet) {
         std::size_t points = probes.size();
         for (const GridResult& g : grids) points += std::size_t(g.evaluated);
-        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                                       t_points).count();
+        const double s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t_points).count();
         std::fprintf(stderr, "hemirad: final gather at %zu points in %.2f s (%.2f ms a point)\n",
                      points, s, points ? 1e3 * s / double(points) : 0.0);
     }

@@ -75,9 +75,9 @@ std::optional<SolutionFile> prepare_resume(const ExportOptions& o, const ArgPars
         }
         for (const SolutionOption& given : now)
             if (given.first == saved.first && given.second != saved.second)
-                throw InputError(o.resume + ": the solution was saved with " + saved.first +
-                                 " " + saved.second + ", but the command line gives " +
-                                 given.first + " " + given.second +
+                throw InputError(o.resume + ": the solution was saved with " + saved.first + " " +
+                                 saved.second + ", but the command line gives " + given.first +
+                                 " " + given.second +
                                  " (leave it out to resume with the saved value)");
     }
     return f;

@@ -44,7 +44,9 @@ std::pair<bool, double> parse_exposure(const std::string& text) {
     return {automatic, stops};
 }
 
-bool is_camera_list(const std::string& text) { return text.find(',') != std::string::npos; }
+bool is_camera_list(const std::string& text) {
+    return text.find(',') != std::string::npos;
+}
 
 Camera choose_camera(const std::string& text, const Scene& scene) {
     if (text.empty()) return default_camera(scene);
@@ -66,8 +68,7 @@ RenderOptions render_options(const ImageOutputOptions& o, Solver& solver) {
     RenderOptions r;
     r.width = o.width;
     r.height = o.height;
-    r.shading = o.shading == "flat" ? RenderOptions::Shading::Flat
-                                    : RenderOptions::Shading::Smooth;
+    r.shading = o.shading == "flat" ? RenderOptions::Shading::Flat : RenderOptions::Shading::Smooth;
     r.patch_edges = o.patch_edges;
     r.two_sided = o.two_sided;
     r.ambient = o.ambient;
@@ -202,8 +203,7 @@ void write_image_outputs(const ImageOutputOptions& o, Solver& solver, bool quiet
                 ToneMap tm;
                 tm.auto_exposure = automatic;
                 tm.exposure = stops;
-                const double k = (automatic ? auto_exposure_scale(image) : 1.0) *
-                                 std::exp2(stops);
+                const double k = (automatic ? auto_exposure_scale(image) : 1.0) * std::exp2(stops);
                 write_png(f, tone_map(image, tm));
                 if (!quiet)
                     std::fprintf(stderr,
@@ -217,13 +217,12 @@ void write_image_outputs(const ImageOutputOptions& o, Solver& solver, bool quiet
     if (!o.false_colour.empty()) {
         RenderOptions fo = ro;
         fo.quantity = RenderOptions::Quantity::Irradiance;
-        fo.patch_edges = false; // the edges would change the values shown
+        fo.patch_edges = false;      // the edges would change the values shown
         fo.background = dvec3(-1.0); // marks "no surface" for false_colour_view
         ImageRGB E = renderer.render(h, camera, fo);
         if (o.discontinuities == "on") resolve_discontinuities(E, h, camera, fo);
         double lo = 0, hi = 0;
-        const Image8 view =
-            false_colour_view(E, o.false_colour_scale == "log", o.lux, &lo, &hi);
+        const Image8 view = false_colour_view(E, o.false_colour_scale == "log", o.lux, &lo, &hi);
         write_png(o.false_colour, view);
         if (!quiet)
             std::fprintf(stderr,

@@ -15,19 +15,19 @@ struct ImageOutputOptions {
     /// --camera: "" (scene.cameras[0]), a camera name of the scene, or
     /// "ex,ey,ez,tx,ty,tz,ux,uy,uz,fov" (fov vertical, degrees)
     std::string camera;
-    int width = 512, height = 512;  ///< [pixels] (16..8192)
-    std::string shading = "smooth"; ///< smooth | flat
-    bool patch_edges = false;       ///< overlay leaf patch edges
-    bool two_sided = false;         ///< draw the backs of polygons (black) instead of culling
+    int width = 512, height = 512;      ///< [pixels] (16..8192)
+    std::string shading = "smooth";     ///< smooth | flat
+    bool patch_edges = false;           ///< overlay leaf patch edges
+    bool two_sided = false;             ///< draw the backs of polygons (black) instead of culling
     std::string discontinuities = "on"; ///< --discontinuities on|off (render.h)
-    bool ambient = false;           ///< add rho * ambient irradiance (display only)
-    bool exr_float = false;         ///< EXR with 32-bit floats (default: half)
+    bool ambient = false;               ///< add rho * ambient irradiance (display only)
+    bool exr_float = false;             ///< EXR with 32-bit floats (default: half)
     /// PNG exposure: "auto" (default: 95th luminance percentile -> 1), "auto+S" / "auto-S"
     /// (S stops from auto), or a number S: fixed scale 2^S (radiosity 2^-S W unit^-2 -> 1).
     std::string exposure = "auto";
-    std::string false_colour;       ///< --false-colour FILE.png (irradiance view)
+    std::string false_colour;               ///< --false-colour FILE.png (irradiance view)
     std::string false_colour_scale = "log"; ///< log | linear
-    bool lux = false;               ///< false colour in lux: E * 683 lm/W (assumes metres)
+    bool lux = false;                       ///< false colour in lux: E * 683 lm/W (assumes metres)
 };
 void add_image_options(ArgParser& args, ImageOutputOptions& o);
 /// Checks everything that needs no scene (extensions, sizes, camera syntax); InputError.

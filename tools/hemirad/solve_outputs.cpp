@@ -9,7 +9,9 @@ namespace hemirad::cli {
 
 namespace {
 volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_signal(int) { g_interrupted = 1; }
+extern "C" void on_signal(int) {
+    g_interrupted = 1;
+}
 } // namespace
 
 void install_interrupt_handler() {
@@ -17,11 +19,17 @@ void install_interrupt_handler() {
     std::signal(SIGTERM, on_signal);
 }
 
-bool interrupted() { return g_interrupted != 0; }
+bool interrupted() {
+    return g_interrupted != 0;
+}
 
-void add_output_options(ArgParser& args, OutputOptions& o) { add_image_options(args, o.images); }
+void add_output_options(ArgParser& args, OutputOptions& o) {
+    add_image_options(args, o.images);
+}
 
-void validate_output_options(const OutputOptions& o) { validate_image_options(o.images); }
+void validate_output_options(const OutputOptions& o) {
+    validate_image_options(o.images);
+}
 
 void write_outputs(const OutputOptions& o, Solver& solver, bool quiet) {
     write_image_outputs(o.images, solver, quiet);

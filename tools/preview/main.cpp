@@ -31,14 +31,14 @@ constexpr const char* kTool = "hemirad-preview";
 
 struct Options {
     std::string scene, out;
-    long every = 0;             ///< a frame every N shots (0: not by shots)
-    double every_seconds = 0;   ///< a frame every T seconds of solving (0: not by time)
+    long every = 0;           ///< a frame every N shots (0: not by shots)
+    double every_seconds = 0; ///< a frame every T seconds of solving (0: not by time)
     int width = 256, height = 256;
-    std::string camera;         ///< "ex,ey,ez,tx,ty,tz,ux,uy,uz,fov"; empty: scene default
+    std::string camera; ///< "ex,ey,ez,tx,ty,tz,ux,uy,uz,fov"; empty: scene default
     bool no_ambient = false, flat = false, exr = false, quiet = false;
-    bool two_sided = false;     ///< draw the backs of polygons (black) instead of culling
-    double exposure = 0;        ///< [stops] on top of each frame's auto exposure
-    int sheet_frames = 24;      ///< at most this many frames on the contact sheet
+    bool two_sided = false; ///< draw the backs of polygons (black) instead of culling
+    double exposure = 0;    ///< [stops] on top of each frame's auto exposure
+    int sheet_frames = 24;  ///< at most this many frames on the contact sheet
     int sheet_columns = 6;
 };
 
@@ -62,10 +62,14 @@ std::string frame_name(long shot, const char* ext) {
 std::string format_seconds(double s) {
     char buf[32];
     if (!std::isfinite(s) || s < 0) return "?";
-    if (s < 10) std::snprintf(buf, sizeof buf, "%.1f s", s);
-    else if (s < 60) std::snprintf(buf, sizeof buf, "%.0f s", s);
-    else if (s < 3600) std::snprintf(buf, sizeof buf, "%dm%02ds", int(s) / 60, int(s) % 60);
-    else std::snprintf(buf, sizeof buf, "%dh%02dm", int(s) / 3600, int(s) % 3600 / 60);
+    if (s < 10)
+        std::snprintf(buf, sizeof buf, "%.1f s", s);
+    else if (s < 60)
+        std::snprintf(buf, sizeof buf, "%.0f s", s);
+    else if (s < 3600)
+        std::snprintf(buf, sizeof buf, "%dm%02ds", int(s) / 60, int(s) % 60);
+    else
+        std::snprintf(buf, sizeof buf, "%dh%02dm", int(s) / 3600, int(s) % 3600 / 60);
     return buf;
 }
 
@@ -84,7 +88,7 @@ double progress(const Solver& s, double first_bound) {
 }
 
 class Progress {
-public:
+  public:
     Progress(bool tty, bool quiet) : tty_(tty && !quiet), quiet_(quiet) {}
 
     /// Terminal: a bar with ETA, at most 4 times a second.
@@ -115,13 +119,15 @@ public:
         shown_ = false;
     }
 
-private:
+  private:
     bool tty_, quiet_, shown_ = false;
     std::chrono::steady_clock::time_point last_{};
 };
 
 volatile sig_atomic_t g_interrupted = 0;
-extern "C" void on_signal(int) { g_interrupted = 1; }
+extern "C" void on_signal(int) {
+    g_interrupted = 1;
+}
 
 void validate(const Options& o, const ArgParser& args) {
     if (o.out.empty()) throw InputError("--out DIR is required");
@@ -206,9 +212,9 @@ Image8 convergence_plot(const std::vector<Sample>& samples, double tolerance) {
     constexpr int kW = 480, kH = 340;
     const Image8 left = plot_lines({bound, unshot, tol}, "convergence vs shots", "shots",
                                    "relative to emitted power", true, kW, kH);
-    const Image8 right = plot_lines({bound_t, unshot_t, tol_t}, "convergence vs time",
-                                    "seconds of solving", "relative to emitted power", true, kW,
-                                    kH);
+    const Image8 right =
+        plot_lines({bound_t, unshot_t, tol_t}, "convergence vs time", "seconds of solving",
+                   "relative to emitted power", true, kW, kH);
     Image8 out(2 * kW, kH, {255, 255, 255});
     blit(out, left, 0, 0);
     blit(out, right, kW, 0);
@@ -265,8 +271,7 @@ int run(int argc, char** argv) {
 
     const Scene scene = load_scene(o.scene, builtin, obj);
     print_scene_warnings(kTool, scene, o.quiet);
-    const Camera camera =
-        user_camera ? *user_camera : default_camera(scene);
+    const Camera camera = user_camera ? *user_camera : default_camera(scene);
 
     // One GL context for the run, shared by the provider and the renderer.
     gl::ContextOptions co;
@@ -347,8 +352,8 @@ int run(int argc, char** argv) {
                      "%s: %s after %ld shots in %.2f s: error bound %.3e (tolerance %.3g); "
                      "%zu frames, contact_sheet.png, convergence.png, convergence.csv in %s\n",
                      kTool, g_interrupted ? "interrupted" : to_string(solver.stop_reason()),
-                     solver.shots(), solver.seconds(),
-                     solver.error_bound(), so.tolerance, frames.size(), o.out.c_str());
+                     solver.shots(), solver.seconds(), solver.error_bound(), so.tolerance,
+                     frames.size(), o.out.c_str());
     return g_interrupted ? 130 : 0;
 }
 

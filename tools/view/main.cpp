@@ -33,31 +33,30 @@ namespace {
 constexpr const char* kTool = "hemirad-view";
 using Clock = std::chrono::steady_clock;
 
-const char* kHelp =
-    "mouse   left drag: orbit    right/middle drag: pan    wheel: zoom\n"
-    "W S / Up Down: fly forward/back    A D / Left Right: sideways\n"
-    "PgUp PgDn: fly up/down    (hold Shift: 4x faster)\n"
-    "R  reset view             F  frame the scene\n"
-    "Space  pause/resume       N  one shot (while paused)\n"
-    "1 / 2  smooth / flat      G  patch edges (grid)\n"
-    "C  false colour (legend)  L  last shooter  I  hemicube\n"
-    "B  ambient term           + / -  exposure up/down (1/2 stop)\n"
-    "O  status line            H / F1  this help\n"
-    "T  backs of polygons      Esc / Q  quit";
+const char* kHelp = "mouse   left drag: orbit    right/middle drag: pan    wheel: zoom\n"
+                    "W S / Up Down: fly forward/back    A D / Left Right: sideways\n"
+                    "PgUp PgDn: fly up/down    (hold Shift: 4x faster)\n"
+                    "R  reset view             F  frame the scene\n"
+                    "Space  pause/resume       N  one shot (while paused)\n"
+                    "1 / 2  smooth / flat      G  patch edges (grid)\n"
+                    "C  false colour (legend)  L  last shooter  I  hemicube\n"
+                    "B  ambient term           + / -  exposure up/down (1/2 stop)\n"
+                    "O  status line            H / F1  this help\n"
+                    "T  backs of polygons      Esc / Q  quit";
 
 struct Options {
     std::string scene;
     int width = 960, height = 720;
-    double budget_ms = 30;       ///< solving time per frame [ms], at least one shot
-    std::string camera;          ///< empty: the scene's default
-    std::string screenshot;      ///< FILE.png: save one frame and exit
-    long after_shots = -1;       ///< screenshot (or exit) once this many shots are done
-    long frames = -1;            ///< screenshot (or exit) at this frame
+    double budget_ms = 30;  ///< solving time per frame [ms], at least one shot
+    std::string camera;     ///< empty: the scene's default
+    std::string screenshot; ///< FILE.png: save one frame and exit
+    long after_shots = -1;  ///< screenshot (or exit) once this many shots are done
+    long frames = -1;       ///< screenshot (or exit) at this frame
     bool no_ambient = false, no_overlay = false, flat = false, edges = false, paused = false;
     bool false_colour = false, show_help = false, quiet = false;
     bool highlight = false, inset = false;
-    bool two_sided = false;      ///< draw the backs of polygons (black) instead of culling
-    double exposure = 0;         ///< [stops]
+    bool two_sided = false; ///< draw the backs of polygons (black) instead of culling
+    double exposure = 0;    ///< [stops]
 };
 
 /// Everything the input callbacks change.
@@ -66,13 +65,13 @@ struct ViewState {
     Bounds bounds;
     bool flat = false, edges = false, false_colour = false, ambient = true;
     bool paused = false, step_once = false, help = false, status = true;
-    bool highlight = false;      ///< outline the last shot's shooter (key L)
-    bool inset = false;          ///< the last hemicube's IDs and form factors (key I)
-    bool two_sided = false;      ///< draw the backs of polygons (key T); default: culled
+    bool highlight = false; ///< outline the last shot's shooter (key L)
+    bool inset = false;     ///< the last hemicube's IDs and form factors (key I)
+    bool two_sided = false; ///< draw the backs of polygons (key T); default: culled
     double exposure = 0;
-    int drag_button = -1;        ///< GLFW mouse button held, -1 none
+    int drag_button = -1; ///< GLFW mouse button held, -1 none
     double last_x = 0, last_y = 0;
-    bool dirty = true;           ///< something changed: draw again
+    bool dirty = true; ///< something changed: draw again
     int fb_height = 1, fb_width = 1;
 };
 
@@ -86,29 +85,63 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
     s.dirty = true;
     switch (key) {
     case GLFW_KEY_ESCAPE:
-    case GLFW_KEY_Q: glfwSetWindowShouldClose(w, GLFW_TRUE); break;
-    case GLFW_KEY_R: s.camera.reset(); break;
+    case GLFW_KEY_Q:
+        glfwSetWindowShouldClose(w, GLFW_TRUE);
+        break;
+    case GLFW_KEY_R:
+        s.camera.reset();
+        break;
     case GLFW_KEY_F:
         s.camera.frame(s.bounds, double(s.fb_width) / std::max(s.fb_height, 1));
         break;
-    case GLFW_KEY_SPACE: s.paused = !s.paused; break;
-    case GLFW_KEY_N: s.paused = true; s.step_once = true; break;
-    case GLFW_KEY_1: s.flat = false; break;
-    case GLFW_KEY_2: s.flat = true; break;
-    case GLFW_KEY_G: s.edges = !s.edges; break;
-    case GLFW_KEY_C: s.false_colour = !s.false_colour; break;
-    case GLFW_KEY_B: s.ambient = !s.ambient; break;
-    case GLFW_KEY_L: s.highlight = !s.highlight; break;
-    case GLFW_KEY_I: s.inset = !s.inset; break;
-    case GLFW_KEY_T: s.two_sided = !s.two_sided; break;
+    case GLFW_KEY_SPACE:
+        s.paused = !s.paused;
+        break;
+    case GLFW_KEY_N:
+        s.paused = true;
+        s.step_once = true;
+        break;
+    case GLFW_KEY_1:
+        s.flat = false;
+        break;
+    case GLFW_KEY_2:
+        s.flat = true;
+        break;
+    case GLFW_KEY_G:
+        s.edges = !s.edges;
+        break;
+    case GLFW_KEY_C:
+        s.false_colour = !s.false_colour;
+        break;
+    case GLFW_KEY_B:
+        s.ambient = !s.ambient;
+        break;
+    case GLFW_KEY_L:
+        s.highlight = !s.highlight;
+        break;
+    case GLFW_KEY_I:
+        s.inset = !s.inset;
+        break;
+    case GLFW_KEY_T:
+        s.two_sided = !s.two_sided;
+        break;
     case GLFW_KEY_EQUAL:
-    case GLFW_KEY_KP_ADD: s.exposure += 0.5; break;
+    case GLFW_KEY_KP_ADD:
+        s.exposure += 0.5;
+        break;
     case GLFW_KEY_MINUS:
-    case GLFW_KEY_KP_SUBTRACT: s.exposure -= 0.5; break;
-    case GLFW_KEY_O: s.status = !s.status; break;
+    case GLFW_KEY_KP_SUBTRACT:
+        s.exposure -= 0.5;
+        break;
+    case GLFW_KEY_O:
+        s.status = !s.status;
+        break;
     case GLFW_KEY_H:
-    case GLFW_KEY_F1: s.help = !s.help; break;
-    default: break;
+    case GLFW_KEY_F1:
+        s.help = !s.help;
+        break;
+    default:
+        break;
     }
 }
 
@@ -130,8 +163,10 @@ void on_cursor(GLFWwindow* w, double x, double y) {
     const double dx = x - s.last_x, dy = y - s.last_y;
     s.last_x = x;
     s.last_y = y;
-    if (s.drag_button == GLFW_MOUSE_BUTTON_LEFT) s.camera.orbit(dx, dy, wh);
-    else s.camera.pan(dx, dy, wh);
+    if (s.drag_button == GLFW_MOUSE_BUTTON_LEFT)
+        s.camera.orbit(dx, dy, wh);
+    else
+        s.camera.pan(dx, dy, wh);
     s.dirty = true;
 }
 
@@ -149,7 +184,9 @@ void on_resize(GLFWwindow* w, int width, int height) {
 }
 
 volatile sig_atomic_t g_interrupted = 0;
-extern "C" void on_signal(int) { g_interrupted = 1; }
+extern "C" void on_signal(int) {
+    g_interrupted = 1;
+}
 
 std::string g_glfw_error;
 void on_glfw_error(int code, const char* text) {
@@ -231,8 +268,7 @@ Image8 hemicube_inset(const FormFactorProvider::HemicubeImage& cube, int panel_w
             Rgb8 id{0, 0, 0}, ff{0, 0, 0};
             if (p[2] > 0.5f) {
                 id = id_colour(std::uint32_t(p[2]) - 1, std::uint32_t(p[1]), std::uint32_t(p[0]));
-                ff = false_colour(colour_scale_position(std::max(double(p[3]), 0.0), lo, hi,
-                                                        true));
+                ff = false_colour(colour_scale_position(std::max(double(p[3]), 0.0), lo, hi, true));
             } else if (p[2] < -0.5f) {
                 id = ff = {64, 64, 64};
             }
@@ -282,7 +318,7 @@ void validate(const Options& o, const ArgParser& args) {
 
 /// Shots and frames per second over the last second or so.
 class Rate {
-public:
+  public:
     void add(long n, Clock::time_point now) {
         count_ += n;
         const double dt = std::chrono::duration<double>(now - start_).count();
@@ -294,7 +330,7 @@ public:
     }
     double rate() const { return rate_; }
 
-private:
+  private:
     Clock::time_point start_ = Clock::now();
     long count_ = 0;
     double rate_ = 0;
@@ -367,8 +403,7 @@ int run(int argc, char** argv) {
     if (scripted) glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
     const std::string title = std::string("hemirad-view: ") + scene.source;
     GLFWwindow* window = glfwCreateWindow(o.width, o.height, title.c_str(), nullptr, nullptr);
-    if (!window)
-        throw RuntimeError("no OpenGL 4.5 core window: " + g_glfw_error);
+    if (!window) throw RuntimeError("no OpenGL 4.5 core window: " + g_glfw_error);
     struct WindowDestroy {
         GLFWwindow* w;
         ~WindowDestroy() { glfwDestroyWindow(w); }
@@ -398,10 +433,8 @@ int run(int argc, char** argv) {
 
         int fbw = 0, fbh = 0;
         glfwGetFramebufferSize(window, &fbw, &fbh);
-        const Camera start = user_camera ? *user_camera
-                                         : default_camera(scene);
-        ViewState s{OrbitCamera(start, std::max(scene.bounds().diagonal(), 1e-9)),
-                    scene.bounds()};
+        const Camera start = user_camera ? *user_camera : default_camera(scene);
+        ViewState s{OrbitCamera(start, std::max(scene.bounds().diagonal(), 1e-9)), scene.bounds()};
         s.flat = o.flat;
         s.edges = o.edges;
         s.false_colour = o.false_colour;
@@ -434,8 +467,10 @@ int run(int argc, char** argv) {
             const bool shot_cap = o.after_shots >= 0 && solver.shots() >= o.after_shots;
             const bool solving = running && !shot_cap && (!s.paused || s.step_once);
             // Idle (paused, converged, minimised): wait for input instead of spinning.
-            if (!solving && !s.dirty && !scripted) glfwWaitEventsTimeout(0.25);
-            else glfwPollEvents();
+            if (!solving && !s.dirty && !scripted)
+                glfwWaitEventsTimeout(0.25);
+            else
+                glfwPollEvents();
             const auto now = Clock::now();
             fly(window, s, std::chrono::duration<double>(now - last).count());
             last = now;
@@ -448,8 +483,9 @@ int run(int argc, char** argv) {
                     if (!solver.step()) {
                         running = false;
                         if (!o.quiet)
-                            std::fprintf(stderr, "%s: %s after %ld shots in %.2f s: error bound "
-                                                 "%.3e\n",
+                            std::fprintf(stderr,
+                                         "%s: %s after %ld shots in %.2f s: error bound "
+                                         "%.3e\n",
                                          kTool, to_string(solver.stop_reason()), solver.shots(),
                                          solver.seconds(), solver.error_bound());
                         break;
@@ -519,15 +555,15 @@ int run(int argc, char** argv) {
             frame_rate.add(1, Clock::now());
             if (s.status) {
                 char line[512];
-                std::snprintf(line, sizeof line,
-                              "shots %ld  unshot %.2e  bound %.2e  %.1f shots/s  %.0f FPS  "
-                              "exp %+.1f%s%s%s",
-                              solver.shots(), solver.unshot_fraction(), solver.error_bound(),
-                              shot_rate.rate(), frame_rate.rate(), s.exposure,
-                              s.ambient && !s.false_colour ? "  ambient" : "",
-                              s.paused ? "  [paused]" : "",
-                              running ? "" : (std::string("  [") +
-                                              to_string(solver.stop_reason()) + "]").c_str());
+                std::snprintf(
+                    line, sizeof line,
+                    "shots %ld  unshot %.2e  bound %.2e  %.1f shots/s  %.0f FPS  "
+                    "exp %+.1f%s%s%s",
+                    solver.shots(), solver.unshot_fraction(), solver.error_bound(),
+                    shot_rate.rate(), frame_rate.rate(), s.exposure,
+                    s.ambient && !s.false_colour ? "  ambient" : "", s.paused ? "  [paused]" : "",
+                    running ? ""
+                            : (std::string("  [") + to_string(solver.stop_reason()) + "]").c_str());
                 std::string text = line;
                 // The GL renderer on the same line if it fits, else on a line of its own.
                 const std::string same = text + "  |  " + renderer_name;
@@ -555,29 +591,28 @@ int run(int argc, char** argv) {
                     const Image8 inset = hemicube_inset(cube, pw, ph);
                     overlay.blit(inset, right - inset.width - 4, 4, fbw, fbh);
                 } else {
-                    const Image8 note = text_panel(solver.shots() > 0
-                                                      ? "no hemicube (CPU form factors)"
-                                                      : "no hemicube yet");
+                    const Image8 note = text_panel(
+                        solver.shots() > 0 ? "no hemicube (CPU form factors)" : "no hemicube yet");
                     overlay.blit(note, right - note.width - 4, 4, fbw, fbh);
                 }
             }
-            if (s.help) overlay.blit(text_panel(kHelp, 1, 8), 8, 8, fbw, fbh);
+            if (s.help)
+                overlay.blit(text_panel(kHelp, 1, 8), 8, 8, fbw, fbh);
             else if (s.status && !scripted)
                 overlay.blit(text_panel("H: help"), 4, 4, fbw, fbh);
 
             ++frames;
-            const bool shots_done = o.after_shots < 0 || solver.shots() >= o.after_shots ||
-                                    !running;
+            const bool shots_done =
+                o.after_shots < 0 || solver.shots() >= o.after_shots || !running;
             const bool frames_done = o.frames <= 0 || frames >= o.frames;
-            if (scripted && shots_done && frames_done && (o.after_shots >= 0 || o.frames > 0 ||
-                                                          frames >= 1)) {
+            if (scripted && shots_done && frames_done &&
+                (o.after_shots >= 0 || o.frames > 0 || frames >= 1)) {
                 if (!o.screenshot.empty()) {
                     glFinish();
                     write_png(o.screenshot, read_back_buffer(fbw, fbh));
                     if (!o.quiet)
                         std::fprintf(stderr, "%s: wrote %s (%dx%d) after %ld shots, frame %ld\n",
-                                     kTool, o.screenshot.c_str(), fbw, fbh, solver.shots(),
-                                     frames);
+                                     kTool, o.screenshot.c_str(), fbw, fbh, solver.shots(), frames);
                 }
                 break;
             }

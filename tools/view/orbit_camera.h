@@ -10,7 +10,7 @@
 namespace hemirad::view {
 
 class OrbitCamera {
-public:
+  public:
     /// Starts at `start` (and returns to it on reset()); `scene_size` [scene units] scales
     /// pan, zoom limits and fly speed.
     OrbitCamera(const Camera& start, double scene_size) : start_(start), size_(scene_size) {
@@ -80,7 +80,7 @@ public:
         return c;
     }
 
-private:
+  private:
     static constexpr double kMaxPitch = 89.0 * M_PI / 180.0;
 
     static dvec3 safe_normalize(const dvec3& v, const dvec3& fallback) {

@@ -20,8 +20,8 @@ void Overlay::blit(const Image8& panel, int x, int y, int fb_width, int fb_heigh
     GLint alignment = 4;
     glGetIntegerv(GL_UNPACK_ALIGNMENT, &alignment);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage2D(texture_.id(), 0, 0, 0, panel.width, panel.height, GL_RGB,
-                        GL_UNSIGNED_BYTE, panel.rgb.data());
+    glTextureSubImage2D(texture_.id(), 0, 0, 0, panel.width, panel.height, GL_RGB, GL_UNSIGNED_BYTE,
+                        panel.rgb.data());
     glPixelStorei(GL_UNPACK_ALIGNMENT, alignment);
     // Texture row 0 is the panel's top row: blit it to the top edge (GL's y runs up).
     const int top = fb_height - y;
@@ -53,8 +53,7 @@ void SceneTarget::present() {
 }
 
 Image8 text_panel(const std::string& text, int scale, int pad) {
-    Image8 img(text_width(text, scale) + 2 * pad, text_height(text, scale) + 2 * pad,
-               {24, 24, 28});
+    Image8 img(text_width(text, scale) + 2 * pad, text_height(text, scale) + 2 * pad, {24, 24, 28});
     draw_text(img, pad, pad, text, {235, 235, 235}, scale);
     return img;
 }

@@ -11,12 +11,12 @@
 namespace hemirad::view {
 
 class Overlay {
-public:
+  public:
     /// Copies `panel` into the default framebuffer (fb_width x fb_height pixels) with its
     /// top-left corner at (x, y), y counted down from the top. Clips to the framebuffer.
     void blit(const Image8& panel, int x, int y, int fb_width, int fb_height);
 
-private:
+  private:
     gl::Texture texture_;
     gl::Framebuffer framebuffer_;
     int width_ = 0, height_ = 0; ///< texture size; grown as needed
@@ -27,14 +27,14 @@ private:
 /// default framebuffer has 24-bit fixed-point depth at best (with it the Cornell box's light,
 /// 0.8 mm under the ceiling, z-fights). Drawn into, then copied to the window with a blit.
 class SceneTarget {
-public:
+  public:
     /// Binds it as the draw framebuffer with a viewport of width x height, (re)allocating it
     /// when the size changes.
     void bind(int width, int height);
     /// Copies its colour into the window's default framebuffer (same size) and binds that.
     void present();
 
-private:
+  private:
     gl::Texture colour_;
     gl::Renderbuffer depth_;
     gl::Framebuffer framebuffer_;

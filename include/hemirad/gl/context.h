@@ -20,12 +20,12 @@ enum class Backend {
 
 struct ContextOptions {
     Backend backend = Backend::Auto; ///< default Auto
-    int device = -1; ///< EGL device index (see Context::egl_devices()); -1: surfaceless default
+    int device = -1;    ///< EGL device index (see Context::egl_devices()); -1: surfaceless default
     bool debug = false; ///< GL debug output to stderr; always on in HEMIRAD_GL_DEBUG builds
 };
 
 class Context {
-public:
+  public:
     /// Creates a GL >= 4.5 core context and makes it current on this thread. Throws
     /// hemirad::RuntimeError naming the call that failed (for Auto: both backends' reasons
     /// and what to install), or the GL version obtained when it is too low.
@@ -52,10 +52,10 @@ public:
     /// "software" or "device <i>". Empty when EGL or the extension is missing.
     static std::vector<std::string> egl_devices();
 
-protected:
+  protected:
     Context() = default;
 
-private:
+  private:
     static std::unique_ptr<Context> create_backend(Backend backend, const ContextOptions& options);
 
     std::string vendor_, renderer_, version_;
