@@ -22,6 +22,7 @@ packages=(
   libstb-dev libtinygltf-dev                               # textures (PNG, JPEG), glTF 2.0
   xvfb xauth                                               # the viewer's tests run under Xvfb
   clang libclang-rt-14-dev                                 # tools/fuzz.sh: libFuzzer, sanitizers
+  clang-format                                             # tools/check_format.sh (CI)
   libopenmpi-dev openmpi-bin                               # mpirun -np N: ranks (docs/scaling.md)
 )
 
