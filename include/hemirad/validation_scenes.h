@@ -86,4 +86,23 @@ int bench_room_polygons(const BenchRoomOptions& options);
 /// writes only triangles would. Deterministic; groups and materials as make_bench_room.
 Scene make_furnished_floor(long triangles);
 
+/// A real-building stand-in in the manner of the Sponza atrium (Dabrovic 2001), for the
+/// hemirad-bench experiment real_building and the built-in scene "courtyard": a courtyard
+/// open to the sky (24 m x 10 m, walls 10 m high), with a two-storey gallery along each long
+/// side behind an arcade of round columns and semicircular arches, a balustrade of small
+/// balusters on the upper storey. Everything is triangles, as exporters write them: floors and
+/// walls tessellated into cells of about `cell` metres, columns into `segments` facets around
+/// and rings along, arches into `segments` steps. The columns stand sunk 0.3 m into the floor
+/// and their capitals touch the arcade walls (contact and interpenetration, as in real
+/// models). Every surface has reflectance `rho`; three isotropic point sources (courtyard
+/// 3000 cd at 7 m, one 1000 cd in each ground-floor gallery). Metres, y up.
+/// Groups: courtyard_floor, gallery_floors, gallery_ceilings, walls, arcades, columns,
+/// balustrades, slab_edges.
+struct CourtyardOptions {
+    double rho = 0.5;  ///< reflectance of every surface, [0, 1)
+    double cell = 0.3; ///< tessellation of floors and walls [m], > 0
+    int segments = 32; ///< facets around a column and steps along an arch, >= 6
+};
+Scene make_courtyard(const CourtyardOptions& options = {});
+
 } // namespace hemirad::validation

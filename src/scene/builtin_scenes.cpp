@@ -189,12 +189,13 @@ Scene sphere(const BuiltinOptions& o) {
 } // namespace
 
 const char* builtin_names() {
-    return "cornell, cube, furnace, sphere, room, cie53, cie56, cie57, cie58, room402, scene3138";
+    return "cornell, cube, furnace, sphere, room, cie53, cie56, cie57, cie58, room402, scene3138, "
+           "courtyard";
 }
 
 bool is_builtin(const std::string& name) {
     for (const char* n : {"cornell", "cube", "furnace", "sphere", "room", "cie53", "cie56", "cie57",
-                          "cie58", "room402", "scene3138"})
+                          "cie58", "room402", "scene3138", "courtyard"})
         if (name == n) return true;
     return false;
 }
@@ -218,6 +219,8 @@ Scene make_builtin(const std::string& name, const BuiltinOptions& o) {
         room = v::make_bench_room({17, 6, 28, 0.6});
     else if (name == "room")
         room = v::make_light_room(reflectance(o, 0.5));
+    else if (name == "courtyard")
+        room = v::make_courtyard({reflectance(o, 0.5)});
     if (!room.polygons.empty()) {
         room.source = "builtin:" + name;
         return room;

@@ -251,4 +251,192 @@ Scene make_furnished_floor(long triangles) {
     return s;
 }
 
+namespace {
+
+// Triangles as exporters write them, for make_courtyard.
+struct Mesher {
+    Builder& b;
+    // A triangle whose front faces along `facing`.
+    void tri(const dvec3& a, dvec3 c1, dvec3 c2, const dvec3& facing, std::uint32_t m,
+             std::uint32_t g) {
+        if (glm::dot(glm::cross(c1 - a, c2 - a), facing) < 0) std::swap(c1, c2);
+        add_polygon(b.scene, {a, c1, c2}, m, g);
+    }
+    // The planar quad a b c d (corners in order around it) as two triangles.
+    void quad(const dvec3& a, const dvec3& c1, const dvec3& c2, const dvec3& d, const dvec3& facing,
+              std::uint32_t m, std::uint32_t g) {
+        tri(a, c1, c2, facing, m, g);
+        tri(a, c2, d, facing, m, g);
+    }
+    // The parallelogram o + s u + t v (s, t in [0, 1]) in cells of about `cell`.
+    void grid(const dvec3& o, const dvec3& u, const dvec3& v, const dvec3& facing, double cell,
+              std::uint32_t m, std::uint32_t g) {
+        const int nu = std::max(1, int(std::ceil(glm::length(u) / cell - 1e-9)));
+        const int nv = std::max(1, int(std::ceil(glm::length(v) / cell - 1e-9)));
+        const auto at = [&](int i, int j) {
+            return o + (double(i) / nu) * u + (double(j) / nv) * v;
+        };
+        for (int j = 0; j < nv; ++j)
+            for (int i = 0; i < nu; ++i)
+                quad(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), facing, m, g);
+    }
+    // A vertical cylinder (outside out, no caps) about (x, z) from y0 to y1, in `segments`
+    // facets around and rings of about `ring` metres.
+    void cylinder(double x, double z, double r, double y0, double y1, int segments, double ring,
+                  std::uint32_t m, std::uint32_t g) {
+        const int rings = std::max(1, int(std::ceil((y1 - y0) / ring)));
+        for (int k = 0; k < segments; ++k) {
+            const double a0 = 2 * std::numbers::pi * k / segments;
+            const double a1 = 2 * std::numbers::pi * (k + 1) / segments;
+            const dvec3 d0(std::cos(a0), 0, std::sin(a0)), d1(std::cos(a1), 0, std::sin(a1));
+            const dvec3 out = d0 + d1;
+            for (int j = 0; j < rings; ++j) {
+                const double ya = y0 + (y1 - y0) * j / rings, yb = y0 + (y1 - y0) * (j + 1) / rings;
+                const dvec3 c(x, 0, z);
+                quad(c + r * d0 + dvec3(0, ya, 0), c + r * d1 + dvec3(0, ya, 0),
+                     c + r * d1 + dvec3(0, yb, 0), c + r * d0 + dvec3(0, yb, 0), out, m, g);
+            }
+        }
+    }
+    // The five visible faces of a box [lo, hi] (no bottom), two triangles each.
+    void block(const dvec3& lo, const dvec3& hi, std::uint32_t m, std::uint32_t g) {
+        const dvec3 e = hi - lo;
+        grid(lo + dvec3(0, e.y, 0), {e.x, 0, 0}, {0, 0, e.z}, {0, 1, 0}, 1e9, m, g);
+        grid(lo, {0, e.y, 0}, {0, 0, e.z}, {-1, 0, 0}, 1e9, m, g);
+        grid(lo + dvec3(e.x, 0, 0), {0, e.y, 0}, {0, 0, e.z}, {1, 0, 0}, 1e9, m, g);
+        grid(lo, {e.x, 0, 0}, {0, e.y, 0}, {0, 0, -1}, 1e9, m, g);
+        grid(lo + dvec3(0, 0, e.z), {e.x, 0, 0}, {0, e.y, 0}, {0, 0, 1}, 1e9, m, g);
+    }
+    // One storey of an arcade in the plane z in [z0 - t, z0] (the front at z0 faces `front`
+    // along z): arches of radius R springing at ys, centred at the bays' centres xc, the wall
+    // up to y_front (front face) and y_back (back face). Spandrels: each bay's rectangle minus
+    // its half disc, cut along rays from the arch's centre (the rectangle's corners among them).
+    void arcade(const std::vector<double>& xc, double bay, double R, double ys, double y_front,
+                double y_back, double z0, double t, double front, int steps, std::uint32_t m,
+                std::uint32_t g) {
+        const double pi = std::numbers::pi;
+        for (double x : xc) {
+            for (int side = 0; side < 2; ++side) {
+                const double z = side == 0 ? z0 : z0 - front * t;
+                const double top = side == 0 ? y_front : y_back;
+                const dvec3 facing(0, 0, side == 0 ? front : -front);
+                std::vector<double> angles;
+                for (int k = 0; k <= steps; ++k) angles.push_back(pi * k / steps);
+                const double corner = std::atan2(top - ys, bay / 2);
+                angles.push_back(corner);
+                angles.push_back(pi - corner);
+                std::sort(angles.begin(), angles.end());
+                const auto boundary = [&](double a) {
+                    const dvec3 d(std::cos(a), std::sin(a), 0);
+                    double s = 1e300;
+                    if (std::abs(d.x) > 1e-12) s = std::min(s, (bay / 2) / std::abs(d.x));
+                    if (d.y > 1e-12) s = std::min(s, (top - ys) / d.y);
+                    return dvec3(x, ys, z) + s * d;
+                };
+                for (std::size_t k = 0; k + 1 < angles.size(); ++k) {
+                    const double a0 = angles[k], a1 = angles[k + 1];
+                    if (a1 - a0 < 1e-9) continue;
+                    const dvec3 p0 = dvec3(x + R * std::cos(a0), ys + R * std::sin(a0), z);
+                    const dvec3 p1 = dvec3(x + R * std::cos(a1), ys + R * std::sin(a1), z);
+                    quad(p0, boundary(a0), boundary(a1), p1, facing, m, g);
+                }
+            }
+            // The arch's underside (intrados), facing its axis.
+            for (int k = 0; k < steps; ++k) {
+                const double a0 = pi * k / steps, a1 = pi * (k + 1) / steps;
+                const dvec3 d0(std::cos(a0), std::sin(a0), 0), d1(std::cos(a1), std::sin(a1), 0);
+                const dvec3 c(x, ys, z0);
+                const dvec3 back(0, 0, -front * t);
+                quad(c + R * d0, c + R * d1, c + R * d1 + back, c + R * d0 + back, -(d0 + d1), m,
+                     g);
+            }
+        }
+    }
+};
+
+} // namespace
+
+Scene make_courtyard(const CourtyardOptions& o) {
+    if (!(o.rho >= 0 && o.rho < 1) || !(o.cell > 0) || o.segments < 6)
+        throw InputError("courtyard: rho in [0, 1), cell > 0, segments >= 6");
+    Builder b;
+    Mesher mesh{b};
+    const auto mat = b.material("stone", o.rho);
+    const double L = 24, Dc = 10, G = 4; // courtyard x in [0, L], z in [0, Dc]; galleries G deep
+    const double H1 = 5, T = 0.3, H2 = 4, Hw = 10; // storeys, slab, wall top
+    const double bay = 3, t = 0.5, rc = 0.25, R = bay / 2 - rc;
+    const double spring[2] = {3.2, H1 + T + 2.5}; // arches spring here, on each storey
+    const double base[2] = {0, H1 + T};
+    const double y_roof = H1 + T + H2;
+    const double cell = o.cell;
+    std::vector<double> bays;
+    for (double x = bay / 2; x < L; x += bay) bays.push_back(x);
+    const auto floor = b.group("courtyard_floor"), gfloor = b.group("gallery_floors");
+    const auto ceil = b.group("gallery_ceilings"), walls = b.group("walls");
+    const auto arc = b.group("arcades"), cols = b.group("columns");
+    const auto bal = b.group("balustrades"), edge = b.group("slab_edges");
+    // One floor under courtyard and galleries; the end walls close everything.
+    mesh.grid({0, 0, -G}, {L, 0, 0}, {0, 0, Dc + 2 * G}, {0, 1, 0}, cell, mat, floor);
+    mesh.grid({0, 0, -G}, {0, Hw, 0}, {0, 0, Dc + 2 * G}, {1, 0, 0}, cell, mat, walls);
+    mesh.grid({L, 0, -G}, {0, Hw, 0}, {0, 0, Dc + 2 * G}, {-1, 0, 0}, cell, mat, walls);
+    for (int side = 0; side < 2; ++side) {
+        const double f = side == 0 ? 1 : -1;       // the courtyard lies towards +f along z
+        const double z0 = side == 0 ? 0 : Dc;      // the arcade's front
+        const double zo = side == 0 ? -G : Dc + G; // the outer wall
+        const double zb = z0 - f * t;              // the arcade's back
+        mesh.grid({0, 0, zo}, {L, 0, 0}, {0, y_roof, 0}, {0, 0, f}, cell, mat, walls);
+        // Gallery ceilings (behind the arcade walls) and the upper gallery floor.
+        mesh.grid({0, H1, zo}, {L, 0, 0}, {0, 0, zb - zo}, {0, -1, 0}, cell, mat, ceil);
+        mesh.grid({0, y_roof, zo}, {L, 0, 0}, {0, 0, zb - zo}, {0, -1, 0}, cell, mat, ceil);
+        mesh.grid({0, H1 + T, zo}, {L, 0, 0}, {0, 0, z0 - zo}, {0, 1, 0}, cell, mat, gfloor);
+        mesh.grid({0, H1, z0}, {L, 0, 0}, {0, T, 0}, {0, 0, f}, cell, mat, edge);
+        for (int storey = 0; storey < 2; ++storey) {
+            const double ys = spring[storey];
+            const double top_front = storey == 0 ? H1 : Hw;
+            const double top_back = storey == 0 ? H1 : y_roof;
+            mesh.arcade(bays, bay, R, ys, top_front, top_back, z0, t, f, o.segments, mat, arc);
+            // The wall's underside between the arches (over the columns, and at the ends).
+            for (std::size_t k = 0; k <= bays.size(); ++k) {
+                const double xa = k == 0 ? 0 : bays[k - 1] + R;
+                const double xb = k == bays.size() ? L : bays[k] - R;
+                mesh.grid({xa, ys, zb}, {xb - xa, 0, 0}, {0, 0, z0 - zb}, {0, -1, 0}, cell, mat,
+                          arc);
+            }
+            if (storey == 1) // the parapet's top, above the upper gallery's roof
+                mesh.grid({0, Hw, zb}, {L, 0, 0}, {0, 0, z0 - zb}, {0, 1, 0}, cell, mat, arc);
+            // Columns between the bays: shaft sunk 0.3 m into the floor, a base block and a
+            // capital under the wall.
+            const double zc = z0 - f * t / 2;
+            for (std::size_t k = 1; k < bays.size(); ++k) {
+                const double x = bays[k] - bay / 2;
+                mesh.cylinder(x, zc, rc, base[storey] - 0.3, ys - 0.3, o.segments, 0.5, mat, cols);
+                mesh.block({x - 0.35, base[storey] - 0.1, zc - 0.35},
+                           {x + 0.35, base[storey] + 0.3, zc + 0.35}, mat, cols);
+                mesh.block({x - 0.35, ys - 0.3, zc - 0.35}, {x + 0.35, ys, zc + 0.35}, mat, cols);
+            }
+            if (storey == 0) continue;
+            // The upper storey's balustrade: balusters and a rail between the columns.
+            for (std::size_t k = 0; k < bays.size(); ++k) {
+                const double xa = bays[k] - bay / 2 + 0.4, xb = bays[k] + bay / 2 - 0.4;
+                const double y0 = base[1], y1 = base[1] + 0.9;
+                for (double x = xa + 0.12; x < xb - 0.05; x += 0.25)
+                    mesh.cylinder(x, zc, 0.05, y0, y1, 8, 0.45, mat, bal);
+                mesh.block({xa, y1, zc - 0.12}, {xb, y1 + 0.1, zc + 0.12}, mat, bal);
+            }
+        }
+    }
+    b.scene.luminaires.resize(3);
+    const dvec3 at[3] = {{L / 2, 7, Dc / 2}, {L / 4, 3.5, -G / 2}, {3 * L / 4, 3.5, Dc + G / 2}};
+    const double cd[3] = {3000, 1000, 1000};
+    for (int k = 0; k < 3; ++k) {
+        Luminaire& l = b.scene.luminaires[std::size_t(k)];
+        l.name = "P" + std::to_string(k + 1);
+        l.kind = "candela";
+        l.position = at[k];
+        l.distribution = isotropic_distribution(cd[k]);
+        l.orient();
+    }
+    return b.finish("courtyard", dvec3(1.0, 1.7, -3.0), dvec3(L, 4.0, Dc / 2));
+}
+
 } // namespace hemirad::validation
