@@ -22,6 +22,31 @@ struct Shooter {
     double power_fraction = 1; ///< unshot_power / total unshot power now (0..1]
 };
 
+/// A cluster of polygons that shoots as one point (cluster_tree.h; Sillion 1995): from
+/// `centre`, with the intensity of the sum of its polygons' cosine lobes per watt emitted,
+///   I(d) = sum_k weight_k max(0, normal_k . d) / pi   [sr^-1], sum_k weight_k = 1,
+/// which integrates to 1 over the sphere: the far field of its polygons' unshot light.
+struct ClusterShooter {
+    dvec3 centre{0.0};           ///< the point it shoots from [unit]
+    dvec3 axis{0.0, 1.0, 0.0};   ///< unit; the two hemicubes look along +axis and -axis
+    double radius = 0;           ///< of its bounding sphere [unit]
+    std::vector<dvec3> normals;  ///< emission lobes (unit normals)...
+    std::vector<double> weights; ///< ...and their shares of the power (sum 1)
+    /// Its polygons, sorted: not drawn (they do not occlude its light), never linked.
+    std::vector<std::uint32_t> members;
+    double unshot_power = 0;   ///< sum over RGB [W]; providers may adapt to it
+    double power_fraction = 1; ///< unshot_power / total unshot power now (0..1]
+    /// A flat cluster (its polygons in one plane, facing `axis`) shoots instead as the
+    /// rectangle `rect` around them in that plane, emitting uniformly: per watt, E_j =
+    /// F(dA_j -> rect) / area(rect), the analytic value of a patch shooter (exact in the near
+    /// field, where a point is not). count 0: not flat.
+    PatchGeometry rect;
+    /// I(d) for a unit direction d [sr^-1 per watt].
+    double intensity(const dvec3& d) const;
+    /// Share of the power emitted into the half space d . axis < 0.
+    double back_share() const;
+};
+
 /// One receiving node and the form factor from it to the shooter, F(j -> S): the fraction
 /// of the power leaving receiver j that arrives at the shooter. The solver uses `ff`.
 struct Link {
@@ -59,6 +84,19 @@ class FormFactorProvider {
         links.clear();
         throw InputError("form-factor method " + name() + " cannot shoot point luminaires");
     }
+    /// A cluster shot (ClusterShooter): its light from its centre over the whole sphere, with
+    /// the same linking as shoot_point(); per watt emitted, ff = ff_analytic = E_j =
+    /// I(d) cos(theta_j) / r^2 at the node's centre [unit^-2]; ff_pixel the flux through the
+    /// node's pixels per watt / A_j. Default: InputError (see can_shoot_clusters()).
+    virtual void shoot_cluster(const ClusterShooter& cluster, std::vector<Link>& links) {
+        (void)cluster;
+        links.clear();
+        throw InputError("form-factor method " + name() + " cannot shoot clusters");
+    }
+    virtual bool can_shoot_clusters() const { return false; }
+    /// Share of the last cluster shot's received power that landed within twice the
+    /// cluster's radius of its centre, where a point is a poor stand-in for the cluster.
+    virtual double last_near_fraction() const { return 0; }
     /// When true, receivers are linked at their leaves (depth of the Discretisation);
     /// used by the matrix solver and by tests. Default: adaptive linking.
     virtual void set_link_at_leaves(bool leaves) { link_at_leaves_ = leaves; }

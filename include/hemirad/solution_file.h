@@ -17,10 +17,13 @@
 //             ...   u32 polygon count P, u64 node count N
 //             N*36  per node (Hierarchy order): f32[3] H, f32[3] dB, f32[3] dI
 //             P*25  per polygon: f64[3] unshot power, u8 dirty
-//             N     per node: u8 enclosed
+//             N     per node: u8 view code (solver.cpp; versions 1 and 2 coded the parallax
+//                   16 steps to an octave, converted when read)
 //             ...   u32 count, then f64 per value: provider state (FormFactorProvider)
 //             ...   u32 luminaire count L, then L*24: f64[3] unshot power per luminaire
 //                   (version 2; version 1 files, without it, are read as L = 0)
+//             ...   u64 cluster count C, then C*1: u8 view code per cluster-tree node
+//                   (version 3; older files are read as C = 0)
 //     end-8   8     u64 FNV-1a 64 hash of every byte before it (detects corruption)
 //
 // (str = u32 byte length + bytes.) A file that is truncated, corrupt, of another version or
@@ -36,7 +39,7 @@
 
 namespace hemirad {
 
-inline constexpr std::uint32_t kSolutionFileVersion = 2;
+inline constexpr std::uint32_t kSolutionFileVersion = 3;
 
 /// An option that affects results, as (command-line name, exact value text).
 using SolutionOption = std::pair<std::string, std::string>;

@@ -21,6 +21,9 @@
 
 namespace hemirad {
 
+/// SolverOptions::clusters "auto" shoots clusters in scenes of more polygons than this.
+inline constexpr std::size_t kClusterPolygons = 4096;
+
 struct SolverOptions {
     std::string ff = "hybrid";  ///< form-factor method (see provider.h)
     ProviderOptions provider;   ///< options of the form-factor providers
@@ -53,6 +56,21 @@ struct SolverOptions {
     /// at every selection (a node that was too strong early may shoot whole later, when it
     /// holds less power). >= 0; 0 = never refine for parallax.
     double shooter_parallax = 3e-4;
+    /// Shoot groups of nearby polygons at once (cluster_tree.h; Smits, Arvo & Greenberg 1994,
+    /// Sillion 1995): when the unshot power is spread over many small polygons, a node of a
+    /// tree of polygon clusters shoots as one point source with its polygons' cosine lobes
+    /// (a flat one: as the rectangle around its polygons), subject to the same test as a patch
+    /// (its misplaced power: parallax, plus the light it sends close to itself, where a point
+    /// is a poor stand-in). "auto": on for scenes of more than kClusterPolygons polygons,
+    /// where shooting polygon by polygon cannot converge in reasonable time, off for smaller
+    /// ones, where it does and clusters would only cost accuracy; "on", "off". GPU providers
+    /// only.
+    std::string clusters = "auto";
+    /// A cluster whose misplaced power (its share misplaced, parallax and near light, times
+    /// its unshot power) would exceed this fraction of the emitted power shoots its children
+    /// instead (as shooter_parallax for a patch; looser, as a cluster shot stands for many
+    /// polygons' and the final gather reads the light it sends through one more bounce). >= 0.
+    double cluster_parallax = 1e-3;
     /// Refuse to build a hierarchy whose estimated memory exceeds this [bytes]
     /// (memory_guard.h); 0 = the memory available (MemAvailable, or the cgroup limit).
     std::uint64_t memory_limit = 0;
@@ -64,6 +82,10 @@ struct ShotRecord {
     /// The luminaire shot (index into Scene::luminaires), or -1 when a patch shot: then
     /// `shooter` is the patch (for a luminaire it is {kNoPolygon-like 0xFFFFFFFF, 0, 0}).
     int luminaire = -1;
+    /// The cluster shot (a node of the solver's cluster tree), or -1; then `shooter` is its
+    /// first polygon's root and cluster_polygons how many polygons it holds.
+    long cluster = -1;
+    std::uint32_t cluster_polygons = 0;
     PatchAddress shooter;
     double shooter_power = 0; ///< unshot power shot, sum over RGB [W]
     std::size_t links = 0;
@@ -89,6 +111,8 @@ void validate_options(const SolverOptions& options);
 enum class StopReason { Running, Converged, MaxShots, TimeLimit, NothingToShoot };
 const char* to_string(StopReason r);
 
+class ClusterTree;
+
 class Solver {
   public:
     /// Builds the hierarchy and the provider named by options.ff. Throws InputError for bad
@@ -97,6 +121,9 @@ class Solver {
     /// Uses the given provider (built for discretise(scene, options.hierarchy)).
     Solver(const Scene& scene, const SolverOptions& options,
            std::unique_ptr<FormFactorProvider> provider);
+    ~Solver();
+    Solver(const Solver&) = delete;
+    Solver& operator=(const Solver&) = delete;
 
     /// Shoots once. Returns false (and shoots nothing) once a stop criterion holds.
     /// With a collective of N > 1 ranks, one step is a round of up to N shots, one per rank
@@ -183,6 +210,7 @@ class Solver {
         std::vector<std::uint8_t> enclosed; ///< per node, a view code (see Solver::view_)
         std::vector<double> provider;       ///< FormFactorProvider::save_state()
         std::vector<dvec3> luminaires;      ///< per luminaire, unshot power [W]
+        std::vector<std::uint8_t> clusters; ///< per cluster-tree node, a view code
     };
     State save_state() const;
     /// Restores a state saved by a solver with the same scene and options. Throws InputError
@@ -203,6 +231,11 @@ class Solver {
     /// its links and learned_ the view codes measured.
     PatchAddress shoot_patch(std::uint32_t polygon, ShotRecord& rec, dvec3& dB, double& area_s);
     bool step_round(); ///< step() with a collective of more than one rank (solver_round.cpp)
+    /// Shoots the cluster tree's shooter, a cluster node; or returns false, leaving in
+    /// `polygon` the polygon to shoot when the descent ends at a single polygon.
+    bool shoot_cluster(ShotRecord& rec, std::uint32_t& polygon);
+    void update_cluster_power();
+    bool must_split_cluster(std::uint32_t node) const;
 
     const Scene* scene_;
     SolverOptions options_;
@@ -216,6 +249,9 @@ class Solver {
     /// shoot the children), 2..255 its parallax fraction, P = 1e-4 * 2^((code - 2) / 16).
     std::vector<std::uint8_t> view_;
     std::vector<std::pair<std::uint64_t, std::uint8_t>> learned_; ///< view_ codes of this shot
+    std::unique_ptr<ClusterTree> clusters_;  ///< null: clusters off (or a CPU provider)
+    std::vector<double> cluster_power_;      ///< per cluster node, unshot power summed over RGB
+    std::vector<std::uint8_t> cluster_view_; ///< per cluster node, a view code (as view_)
     ShotRecord last_;
     std::vector<ShotRecord> round_;
     Collective* collective_ = nullptr;

@@ -32,6 +32,9 @@ void add_solver_options(ArgParser& args, SolverOptions& so) {
     args.option("--shooter-parallax", &so.shooter_parallax, "F",
                 "shoot a node's children instead of the node when its view changes across "
                 "its area by more than this share of its form factor (0 = never)");
+    args.option("--clusters", &so.clusters, "auto|on|off",
+                "shoot groups of nearby polygons at once when their power is spread over many "
+                "small polygons (GPU form factors); auto: in scenes of more than 4096 polygons");
     std::uint64_t* limit = &so.memory_limit;
     args.custom(
         "--memory-limit",

@@ -79,3 +79,24 @@ double point_to_polygon_ff(const dvec3& p, const dvec3& n, const dvec3* corners,
 }
 
 } // namespace hemirad
+
+namespace hemirad {
+
+double ClusterShooter::intensity(const dvec3& d) const {
+    double i = 0;
+    for (std::size_t k = 0; k < normals.size(); ++k)
+        i += weights[k] * std::max(0.0, glm::dot(normals[k], d));
+    return i / std::numbers::pi;
+}
+
+double ClusterShooter::back_share() const {
+    // A cosine lobe about n puts the share (1 - n.a)/2 of its power... exactly: the power of
+    // max(0, n.d)/pi over the half space d.a < 0 is (1 - n.a)/2 (the projected solid angle
+    // of the part of n's hemisphere below the plane of a, over pi).
+    double s = 0;
+    for (std::size_t k = 0; k < normals.size(); ++k)
+        s += weights[k] * 0.5 * (1.0 - glm::dot(normals[k], axis));
+    return std::clamp(s, 0.0, 1.0);
+}
+
+} // namespace hemirad

@@ -131,6 +131,7 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
             }
         clusters_.push_back(c);
     }
+    hidden_per_cluster_.assign(clusters_.size(), 0);
 
     // Vertices: every polygon as one triangle or two, with its (u,v) parameters.
     std::vector<Vertex> verts;
@@ -331,7 +332,7 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
                 all_in &= lo >= -eps;
             }
             if (all_out) continue;
-            if (all_in) {
+            if (all_in && hidden_per_cluster_[std::size_t(&k - clusters_.data())] == 0) {
                 if (own >= k.begin && own < k.end) {
                     draw_polygons(k.begin, own);
                     draw_polygons(own + 1, k.end);
@@ -340,8 +341,9 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
                 }
                 continue;
             }
+            const bool some_hidden = hidden_per_cluster_[std::size_t(&k - clusters_.data())] > 0;
             for (std::uint32_t i = k.begin; i < k.end; ++i) {
-                if (i == own) continue;
+                if (i == own || (some_hidden && hidden(i))) continue;
                 const Polygon& p = scene_->polygons[i];
                 bool above = false;
                 for (int j = 0; j < p.count; ++j) above |= glm::dot(p.v[j] - c, N) > eps;
@@ -376,6 +378,13 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
     glBindVertexArray(0);
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void HemicubeRenderer::set_hidden(const std::vector<std::uint32_t>& polygons) {
+    for (std::uint32_t p : hidden_) hidden_per_cluster_[p / kClusterSize] = 0;
+    hidden_ = polygons;
+    std::sort(hidden_.begin(), hidden_.end());
+    for (std::uint32_t p : hidden_) ++hidden_per_cluster_[p / kClusterSize];
 }
 
 void HemicubeRenderer::draw_polygons(std::uint32_t begin, std::uint32_t end) {

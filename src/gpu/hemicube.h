@@ -4,6 +4,7 @@
 // shaders/hemicube.frag. No solver state here: the provider turns pixels into links.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -75,6 +76,10 @@ class HemicubeRenderer {
     /// angle_method: 0 the arccos table, 1 GLSL acos, 2 GLSL atan (hemicube.frag).
     void render(const Shooter& shooter, const HemicubeLayout& layout, double lod_bias,
                 int angle_method);
+    /// Polygons that later render() calls do not draw (a cluster shooter's own polygons:
+    /// they are where its light comes from, not in its way), until the next call; empty:
+    /// none but the shooter's own polygon.
+    void set_hidden(const std::vector<std::uint32_t>& polygons);
     /// Reads the region of `layout` back: RGBA floats, row 0 at the bottom.
     void read_back(const HemicubeLayout& layout, std::vector<float>& rgba);
 
@@ -97,6 +102,11 @@ class HemicubeRenderer {
     };
     static constexpr std::uint32_t kClusterSize = 64;
     std::vector<Cluster> clusters_;
+    std::vector<std::uint32_t> hidden_;             ///< set_hidden(), sorted
+    std::vector<std::uint32_t> hidden_per_cluster_; ///< of clusters_, how many are hidden
+    bool hidden(std::uint32_t polygon) const {
+        return !hidden_.empty() && std::binary_search(hidden_.begin(), hidden_.end(), polygon);
+    }
     double eps_ = 0; ///< 1e-9 x the scene's diagonal: "in front of a plane" [scene units]
     std::vector<GLint> draw_first_;
     std::vector<GLsizei> draw_count_;

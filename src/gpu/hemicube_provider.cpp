@@ -8,9 +8,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <deque>
+#include <functional>
+#include <optional>
 
 #include "gpu/hemicube.h"
+#include "gpu/hemicube_visibility.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/provider.h"
@@ -25,6 +30,10 @@ double since(Clock::time_point t) {
 }
 
 enum class Mode { Hemicube, Analytic, Hybrid };
+
+/// A node seen on at least this many pixels of a point shot's hemicubes is near the point:
+/// it takes its pixels' flux, not the kernel at its centre (add_link).
+constexpr std::uint32_t kNearPixels = 16;
 
 /// The polygon of a luminaire's stand-in shooter: none (the renderer skips no polygon).
 constexpr std::uint32_t kNoShooterPolygon = 0xFFFFFFFFu;
@@ -50,10 +59,14 @@ class HemicubeProvider final : public FormFactorProvider {
             total += tree_size(disc.depth[p]);
         }
         pixel_sum_.assign(total, 0.f);
+        pixel_count_.assign(total, 0);
         analytic_.assign(total, 0.f);
         seen_.assign(total, 0);
         polygon_seen_.assign(scene.polygons.size(), 0);
         below_seen_.assign(total, 0);
+        partial_.assign(total, 0);
+        for (const Polygon& poly : scene.polygons)
+            centre_.push_back(patch_geometry(poly, 0, 0).centre);
         area_.assign(total, -1.f);
     }
 
@@ -102,28 +115,131 @@ class HemicubeProvider final : public FormFactorProvider {
         timings_.push_back({"reduce", since(t0)});
     }
 
-    // A luminaire shoots from its position over the whole sphere: two hemicubes, along the
-    // nadir (+aim) and against it, each from a stand-in shooter (a small square centred on the
-    // luminaire, of no polygon, so that every polygon is drawn). Their patch IDs give the
-    // linking and the visibility, as for a polygon shooter; the values are computed here: the
-    // analytic I(d) cos(theta_j) / (683 r^2) at each node's centre, and the flux through the
-    // node's pixels, sum I(u) omega / 683 (omega = the pixel's solid angle).
+    // A luminaire shoots from its position over the whole sphere (shoot_sphere), with its
+    // intensity in candela: per watt emitted, I(d) / (683 P).
     void shoot_point(const Luminaire& luminaire, std::vector<Link>& links) override {
         links.clear();
         timings_.clear();
         const double power = luminaire.power();
         if (!(power > 0)) return;
+        const double per_watt = 1.0 / (kLumensPerWatt * power);
+        Sphere s;
+        s.centre = luminaire.position;
+        s.axis = luminaire.aim;
+        s.first = luminaire.c0;
+        s.half = 0.005 * std::max(scene_->bounds().diagonal(), 1e-300);
+        s.intensity = [&](const dvec3& d) { return luminaire.intensity(d) * per_watt; };
+        shoot_sphere(s, options_.resolution ? options_.resolution : options_.max_resolution, links);
+    }
+
+    bool can_shoot_clusters() const override { return true; }
+    double last_near_fraction() const override { return near_fraction_; }
+
+    // A cluster shoots from its centre over the whole sphere (shoot_sphere) with the
+    // intensity of its polygons' cosine lobes; its polygons are not drawn. The hemicube
+    // against the axis is left out when the cluster sends less than 0.1 % of its power there
+    // (a flat cluster), and that light is added to the other side's (scaled: energy is kept).
+    void shoot_cluster(const ClusterShooter& c, std::vector<Link>& links) override {
+        links.clear();
+        timings_.clear();
+        if (c.rect.count > 0) {
+            Shooter flat;
+            flat.address = {kNoShooterPolygon, 0, 0};
+            flat.geometry = c.rect;
+            flat.normal = c.axis;
+            flat.unshot_power = c.unshot_power;
+            flat.power_fraction = c.power_fraction;
+            renderer_->set_hidden(c.members);
+            hidden_ = &c.members;
+            shoot(flat, links);
+            hidden_ = nullptr;
+            renderer_->set_hidden({});
+            // The light the backs of polygons would take (the rectangle's centre sees them where
+            // the cluster's polygons would not) goes to what it sees instead: energy is kept,
+            // and the solver counts the share as misplaced.
+            const float per_watt = float(1.0 / (c.rect.area * std::max(1.0 - backface_, 0.05)));
+            for (Link& l : links) {
+                l.ff *= per_watt;
+                l.ff_analytic *= per_watt;
+                l.ff_pixel *= per_watt;
+            }
+            near_fraction_ = 0;
+            return;
+        }
+        Shooter stand_in;
+        stand_in.unshot_power = c.unshot_power;
+        stand_in.power_fraction = c.power_fraction;
+        const int res = resolution_for(stand_in);
+        Sphere s;
+        s.centre = c.centre;
+        s.axis = c.axis;
+        s.first = perpendicular(c.axis);
+        s.half = std::max(c.radius, 1e-9 * scene_->bounds().diagonal());
+        const double back = c.back_share();
+        s.front_only = back < 1e-3;
+        const double scale = s.front_only ? 1.0 / std::max(1.0 - back, 1e-12) : 1.0;
+        s.intensity = [&c, scale](const dvec3& d) { return c.intensity(d) * scale; };
+        renderer_->set_hidden(c.members);
+        hidden_ = &c.members;
+        shoot_sphere(s, res, links);
+        hidden_ = nullptr;
+        renderer_->set_hidden({});
+        // The light the backs of polygons would take goes to what the point sees instead (see
+        // the flat case).
+        const float keep = float(1.0 / std::max(1.0 - backface_, 0.05));
+        for (Link& l : links) {
+            l.ff *= keep;
+            l.ff_analytic *= keep;
+            l.ff_pixel *= keep;
+        }
+        // How wrong a point is as a stand-in for the cluster: the light received, weighted by
+        // (R / r)^2 (the relative error of a point's kernel at distance r from a cluster of
+        // radius R, capped at 1), over the light received.
+        double near = 0, total = 0;
+        const double R2 = c.radius * c.radius;
+        for (const Link& l : links) {
+            const Polygon& poly = scene_->polygons[l.receiver.polygon];
+            const PatchGeometry g = patch_geometry(poly, l.receiver.level, l.receiver.index);
+            const double w = double(l.ff) * g.area;
+            total += w;
+            const dvec3 d = g.centre - c.centre;
+            near += w * std::min(1.0, R2 / std::max(glm::dot(d, d), 1e-300));
+        }
+        near_fraction_ = total > 0 ? near / total : 0;
+    }
+
+  private:
+    // A shot from a point over the whole sphere (a luminaire, a cluster).
+    struct Sphere {
+        dvec3 centre{0.0}, axis{0.0, -1.0, 0.0}, first{1.0, 0.0, 0.0}; ///< first: along the
+                                                                       ///< hemicubes' first edge
+        double half = 0;         ///< half the side of the stand-in square [unit]
+        bool front_only = false; ///< only the hemicube along +axis
+        std::function<double(const dvec3&)> intensity; ///< [sr^-1 per watt emitted]
+    };
+
+    static dvec3 perpendicular(const dvec3& a) {
+        const dvec3 t = std::abs(a.x) < 0.9 ? dvec3(1, 0, 0) : dvec3(0, 1, 0);
+        return glm::normalize(t - glm::dot(t, a) * a);
+    }
+
+    // Two hemicubes, along +axis and against it, each from a stand-in shooter (a small square
+    // centred on the point, of no polygon, so that every polygon but the hidden ones is
+    // drawn). Their patch IDs give the linking and the visibility, as for a polygon shooter;
+    // the values are computed here: the analytic I(d) cos(theta_j) / r^2 at each node's
+    // centre, and the flux through the node's pixels, sum I(u) omega (omega = the pixel's
+    // solid angle).
+    void shoot_sphere(const Sphere& s, int res, std::vector<Link>& links) {
         ++stamp_;
-        point_ = &luminaire;
-        point_power_ = power;
-        const gpu::HemicubeLayout& layout =
-            layout_of(options_.resolution ? options_.resolution : options_.max_resolution);
+        point_ = &s;
+        const gpu::HemicubeLayout& layout = layout_of(res);
         const int angle = options_.atan_angle ? 2 : options_.builtin_acos ? 1 : 0;
-        const Shooter sides[2] = {point_shooter(luminaire, -1.0), point_shooter(luminaire, 1.0)};
+        const Shooter sides[2] = {point_shooter(s, -1.0), point_shooter(s, 1.0)};
         std::vector<float>* buffers[2] = {&pixels_back_, &pixels_};
         touched_.clear();
         double t_render = 0, t_read = 0, t_reduce = 0;
-        for (int k = 0; k < 2; ++k) {
+        double back = 0; // the light that the backs of polygons take
+        for (int k = s.front_only ? 1 : 0; k < 2; ++k) {
             auto t0 = Clock::now();
             renderer_->render(sides[k], layout, options_.lod_bias, angle);
             t_render += since(t0);
@@ -139,13 +255,16 @@ class HemicubeProvider final : public FormFactorProvider {
                 for (int j = 0; j < face.h; ++j)
                     for (int i = 0; i < face.w; ++i) {
                         const std::size_t at = std::size_t(face.y + j) * layout.width + face.x + i;
-                        if (px[4 * at + 2] < 0.5f) continue; // nothing, or a back
+                        const float id = px[4 * at + 2];
+                        if (id > -0.5f && id < 0.5f) continue; // nothing
                         const dvec3 u = gpu::hemicube_direction(layout, frame, f, i, j);
                         const double c = glm::dot(u, frame.dir[f]);
                         const double omega = d2 * c * c * c; // solid angle of the pixel
-                        scan_pixel(
-                            px.data(), at,
-                            float(luminaire.intensity(u) * omega / (kLumensPerWatt * power)));
+                        const double flux = s.intensity(u) * omega;
+                        if (id < 0)
+                            back += flux;
+                        else
+                            scan_pixel(px.data(), at, float(flux));
                     }
             }
             t_reduce += since(t0);
@@ -157,14 +276,26 @@ class HemicubeProvider final : public FormFactorProvider {
             analytic_[node_id(a.polygon, a.level, a.index)] =
                 float(analytic_at(sides[0], g.centre, scene_->polygons[a.polygon].normal));
         }
-        backface_ = 0;
+        backface_ = back;
         last_width_ = layout.width;
         last_height_ = layout.height;
         last_layout_ = &layout;
         last_shooter_ = sides[1];
+        std::optional<gpu::HemicubeVisibility> vis[2];
+        for (int k = s.front_only ? 1 : 0; k < 2; ++k) {
+            vis[k].emplace(*scene_, layout, gpu::hemicube_frame(sides[k]), buffers[k]->data(),
+                           s.centre);
+            vis_[k] = &*vis[k];
+            if (mode_ == Mode::Hybrid) mark_partial(*vis[k], buffers[k]->data());
+        }
+        sphere_centre_ = s.centre;
+        sphere_axis_ = s.axis;
         link_touched(sides[0], 1.0, links);
         if (mode_ != Mode::Hemicube)
-            for (int k = 0; k < 2; ++k) link_missed_polygons(sides[k], layout, *buffers[k], links);
+            for (int k = s.front_only ? 1 : 0; k < 2; ++k)
+                link_missed_polygons(sides[k], *vis[k], links);
+        vis_[0] = vis_[1] = nullptr;
+        sphere_axis_ = dvec3(0.0);
         t_reduce += since(t0);
         point_ = nullptr;
         timings_.push_back({"render", t_render});
@@ -172,8 +303,7 @@ class HemicubeProvider final : public FormFactorProvider {
         timings_.push_back({"reduce", t_reduce});
     }
 
-  private:
-    const gpu::HemicubeLayout& layout_for(const Shooter& shooter) {
+    int resolution_for(const Shooter& shooter) {
         int res = options_.resolution;
         if (res == 0) {
             // Less unshot power, coarser cube (paper 002 §2): resolution scales with the square
@@ -184,7 +314,11 @@ class HemicubeProvider final : public FormFactorProvider {
             res = std::clamp(res, options_.min_resolution, options_.max_resolution);
             res += res % 2;
         }
-        return layout_of(res);
+        return res;
+    }
+
+    const gpu::HemicubeLayout& layout_for(const Shooter& shooter) {
+        return layout_of(resolution_for(shooter));
     }
 
     const gpu::HemicubeLayout& layout_of(int res) {
@@ -195,28 +329,35 @@ class HemicubeProvider final : public FormFactorProvider {
         return layouts_.back();
     }
 
-    // The stand-in shooter of a luminaire's hemicube along side * aim: a square of side 1 %
-    // of the scene's diagonal centred on the luminaire (its size sets only the near plane; its
-    // first edge, the frame), of no polygon, with a corner count of 0 so that the fragment
-    // shader computes no polygon form factor (its loop over the shooter's corners is empty).
-    Shooter point_shooter(const Luminaire& l, double side) const {
+    // The stand-in shooter of a point shot's hemicube along side * axis: a square of side
+    // 2 half centred on the point (its size sets only the near plane; its first edge, the
+    // frame), of no polygon, with a corner count of 0 so that the fragment shader computes no
+    // polygon form factor (its loop over the shooter's corners is empty).
+    Shooter point_shooter(const Sphere& p, double side) const {
         Shooter s;
         s.address = {kNoShooterPolygon, 0, 0};
-        s.normal = side * l.aim;
-        const double h = 0.005 * std::max(scene_->bounds().diagonal(), 1e-300);
-        const dvec3 a = h * l.c0, b = h * glm::cross(s.normal, l.c0);
+        s.normal = side * p.axis;
+        const dvec3 a = p.half * p.first, b = p.half * glm::cross(s.normal, p.first);
         s.geometry.count = 0;
-        s.geometry.corners = {l.position - a - b, l.position + a - b, l.position + a + b,
-                              l.position - a + b};
-        s.geometry.centre = l.position;
-        s.geometry.area = 4 * h * h;
+        s.geometry.corners = {p.centre - a - b, p.centre + a - b, p.centre + a + b,
+                              p.centre - a + b};
+        s.geometry.centre = p.centre;
+        s.geometry.area = 4 * p.half * p.half;
         return s;
     }
 
-    // F(dA_j -> S) of the polygon shooter, or for a point shot E_j / P (see shoot_point), at
-    // a receiver centre with normal n, unoccluded.
+    // F(dA_j -> S) of the polygon shooter, or for a point shot E_j per watt emitted (see
+    // shoot_sphere), at a receiver centre with normal n, unoccluded.
     double analytic_at(const Shooter& s, const dvec3& centre, const dvec3& n) const {
-        if (point_) return point_->irradiance(centre, n) / point_power_;
+        if (point_) {
+            const dvec3 d = centre - point_->centre;
+            const double r2 = glm::dot(d, d);
+            if (!(r2 > 0)) return 0;
+            const dvec3 w = d / std::sqrt(r2);
+            const double cos_theta = -glm::dot(n, w);
+            if (!(cos_theta > 0)) return 0;
+            return point_->intensity(w) * cos_theta / r2;
+        }
         return point_to_polygon_ff(centre, n, s.geometry.corners.data(), s.geometry.count);
     }
 
@@ -264,8 +405,73 @@ class HemicubeProvider final : public FormFactorProvider {
             scan_pixel(pixels_.data(), i, layout.delta_ff[i]);
         }
         backface_ = backface;
+        const gpu::HemicubeVisibility vis(*scene_, layout, gpu::hemicube_frame(shooter),
+                                          pixels_.data(), shooter.geometry.centre);
+        vis_[0] = vis_[1] = &vis;
+        sphere_axis_ = dvec3(0.0);
+        if (mode_ == Mode::Hybrid) mark_partial(vis, pixels_.data());
         link_touched(shooter, shooter.geometry.area, links);
-        if (mode_ != Mode::Hemicube) link_missed_polygons(shooter, layout, pixels_, links);
+        if (mode_ != Mode::Hemicube) link_missed_polygons(shooter, vis, links);
+        vis_[0] = vis_[1] = nullptr;
+    }
+
+    // Nodes that a silhouette crosses (gpu::HemicubeVisibility::occlusion_edges): the
+    // pixels where their polygon goes on behind something nearer border theirs.
+    void mark_partial(const gpu::HemicubeVisibility& vis, const float* rgba) {
+        vis.occlusion_edges([&](std::size_t i) {
+            const float* px = &rgba[4 * i];
+            partial_[node_id(std::uint32_t(px[2]) - 1, std::uint32_t(px[1]),
+                             std::uint32_t(px[0]))] = stamp_;
+        });
+    }
+
+    // Is x (on polygon p) seen by the shooter, in the hemicube of its side (a point shot has
+    // two: along and against its axis)?
+    bool visible(const dvec3& x, std::uint32_t p) const {
+        const bool front = glm::dot(sphere_axis_, sphere_axis_) == 0 ||
+                           glm::dot(x - sphere_centre_, sphere_axis_) >= 0;
+        const gpu::HemicubeVisibility* v = vis_[front ? 1 : 0];
+        return v && v->visible(x, p);
+    }
+
+    // Links the parts of node a that the shooter sees (a silhouette crosses a): a is sampled
+    // at its centre and its four children's centres; all seen, it is linked whole (analytic
+    // value at its centre); some seen, its children are taken one by one, down to the leaves,
+    // where the share of samples seen scales the value; none seen, nothing (a sliver between
+    // the samples: its pixels, at most the analytic value, when a was seen itself).
+    void link_visible_parts(const Shooter& shooter, const PatchAddress& a, float analytic,
+                            double pixel_power, bool has_pixels, std::vector<Link>& links) {
+        const Polygon& poly = scene_->polygons[a.polygon];
+        const bool tri = poly.is_triangle();
+        const PatchGeometry g = patch_geometry(poly, a.level, a.index);
+        int seen = visible(g.centre, a.polygon) ? 1 : 0;
+        const std::array<std::uint32_t, 4> children = patch_children(tri, a.level, a.index);
+        for (std::uint32_t c : children)
+            seen += visible(patch_geometry(poly, a.level + 1, c).centre, a.polygon) ? 1 : 0;
+        const double area_j = area(a.polygon, a.level, a.index);
+        if (analytic < 0) analytic = float(analytic_at(shooter, g.centre, poly.normal));
+        Link l;
+        l.receiver = a;
+        l.ff_analytic = analytic;
+        l.ff_pixel = float(pixel_power / area_j);
+        l.partial = seen < 5;
+        if (point_ && has_pixels &&
+            pixel_count_[node_id(a.polygon, a.level, a.index)] >= kNearPixels) {
+            l.ff = l.ff_pixel; // near a point shot (add_link)
+        } else if (seen == 5) {
+            l.ff = analytic;
+        } else if (seen == 0) {
+            l.ff = has_pixels ? std::min(l.ff_pixel, analytic) : 0.f;
+        } else if (int(a.level) < disc_.depth[a.polygon]) {
+            for (std::uint32_t c : children)
+                link_visible_parts(shooter, {a.polygon, a.level + 1, c}, -1.f, 0.0, false, links);
+            return;
+        } else if (has_pixels) { // a leaf seen itself: its pixels measure the part seen
+            l.ff = std::min(l.ff_pixel, analytic);
+        } else {
+            l.ff = analytic * float(seen) / 5.f;
+        }
+        if (l.ff > 0) links.push_back(l);
     }
 
     // Pixel `i` of `rgba` shows a front (B > 0): marks its node seen (taking its analytic
@@ -280,10 +486,12 @@ class HemicubeProvider final : public FormFactorProvider {
         if (seen_[id] != stamp_) {
             seen_[id] = stamp_;
             pixel_sum_[id] = 0;
+            pixel_count_[id] = 0;
             analytic_[id] = px[3];
             touched_.push_back({p, level, index});
         }
         pixel_sum_[id] += weight;
+        ++pixel_count_[id];
     }
 
     // Links every node seen in this shot. pixel_scale turns a node's pixel sum into the
@@ -312,39 +520,30 @@ class HemicubeProvider final : public FormFactorProvider {
                 split(shooter, a, double(pixel_sum_[id]) * pixel_scale, links);
                 continue;
             }
-            add_link(shooter, a, analytic_[id], double(pixel_sum_[id]) * pixel_scale, links);
+            if (mode_ == Mode::Hybrid && partial_[id] == stamp_)
+                link_visible_parts(shooter, a, analytic_[id], double(pixel_sum_[id]) * pixel_scale,
+                                   true, links);
+            else
+                add_link(shooter, a, analytic_[id], double(pixel_sum_[id]) * pixel_scale, links);
         }
     }
 
     // A polygon smaller than a pixel can fall between pixel centres and get no pixel at all
     // (the oracle can coarsen within a polygon, not below one): its light would be lost,
-    // and the rows of closed scenes of many small polygons would sum under 1. For every
-    // polygon in front of the shooter that no pixel shows, look at the pixel its centre
-    // falls in: if the surface there is farther away (or there is none), the polygon is
-    // visible and is linked whole, with its analytic value computed here.
-    // (A point shot calls this once per hemicube, each with its own pixels: a polygon's centre
-    // lies on one side of the luminaire.)
-    void link_missed_polygons(const Shooter& shooter, const gpu::HemicubeLayout& layout,
-                              const std::vector<float>& pixels, std::vector<Link>& links) {
-        const gpu::HemicubeFrame frame = gpu::hemicube_frame(shooter);
+    // and the rows of closed scenes of many small polygons would sum under 1. Every polygon
+    // in front of the shooter that no pixel shows is linked whole, with its analytic value
+    // computed here, if its centre is seen in the hemicube taken as a depth map
+    // (HemicubeVisibility::visible_in_depth_map).
+    void link_missed_polygons(const Shooter& shooter, const gpu::HemicubeVisibility& vis,
+                              std::vector<Link>& links) {
         const dvec3& eye = shooter.geometry.centre;
         for (std::uint32_t p = 0; p < scene_->polygons.size(); ++p) {
             if (polygon_seen_[p] == stamp_ || p == shooter.address.polygon) continue;
+            if (hidden_ && std::binary_search(hidden_->begin(), hidden_->end(), p)) continue;
             const Polygon& poly = scene_->polygons[p];
-            const dvec3 centre = patch_geometry(poly, 0, 0).centre;
-            const dvec3 d = centre - eye;
-            if (glm::dot(poly.normal, d) >= 0) continue; // faces away from the shooter
-            const long pixel = gpu::hemicube_pixel(layout, frame, d);
-            if (pixel < 0) continue; // below the shooter's plane
-            const float id = pixels[4 * std::size_t(pixel) + 2];
-            if (id > 0.5f || id < -0.5f) {
-                const Polygon& q = scene_->polygons[std::uint32_t(std::abs(id)) - 1];
-                const double along = glm::dot(d, q.normal);
-                if (along != 0) {
-                    const double t = glm::dot(q.v[0] - eye, q.normal) / along; // in units of d
-                    if (t < 1 - 1e-6) continue; // something nearer covers it: occluded
-                }
-            }
+            const dvec3& centre = centre_[p];
+            if (glm::dot(poly.normal, centre - eye) >= 0) continue; // faces away from the shooter
+            if (!vis.visible_in_depth_map(centre, p)) continue;
             const double f = analytic_at(shooter, centre, poly.normal);
             if (f <= 0) continue;
             Link l;
@@ -380,6 +579,11 @@ class HemicubeProvider final : public FormFactorProvider {
                 }
             }
             l.ff = l.partial ? std::min(l.ff_pixel, l.ff_analytic) : l.ff_analytic;
+            // A point shot's kernel I cos / r^2 at the centre of a node near the point (one
+            // that covers many pixels) says nothing of the node's average, and grows without
+            // bound as r shrinks: there the flux through its pixels is the measure.
+            if (point_ && pixel_count_[node_id(a.polygon, a.level, a.index)] >= kNearPixels)
+                l.ff = l.ff_pixel;
             break;
         }
         }
@@ -435,9 +639,17 @@ class HemicubeProvider final : public FormFactorProvider {
     std::deque<gpu::HemicubeLayout> layouts_; // deque: references stay valid as it grows
     std::vector<std::uint64_t> base_;
     std::vector<float> pixels_, pixel_sum_, analytic_, area_;
-    std::vector<float> pixels_back_;   ///< a point shot's hemicube against the aim
-    const Luminaire* point_ = nullptr; ///< during shoot_point(): the luminaire
-    double point_power_ = 0;           ///< its power per channel [W]
+    std::vector<std::uint32_t> pixel_count_; ///< per node seen, its pixels in this shot
+    std::vector<float> pixels_back_;         ///< a point shot's hemicube against the aim
+    const Sphere* point_ = nullptr;          ///< during shoot_sphere(): the point shot
+    /// During a shot's linking: the visibility of its hemicubes (against and along the axis;
+    /// a patch shot has one, in both) and a point shot's centre and axis (0: a patch shot).
+    const gpu::HemicubeVisibility* vis_[2] = {nullptr, nullptr};
+    dvec3 sphere_centre_{0.0}, sphere_axis_{0.0};
+    std::vector<std::uint32_t> partial_; ///< per node, stamp_: a silhouette crosses it
+    std::vector<dvec3> centre_;          ///< per polygon, its level-0 centre
+    const std::vector<std::uint32_t>* hidden_ = nullptr; ///< during shoot_cluster(): members
+    double near_fraction_ = 0;
     std::vector<std::uint32_t> seen_, below_seen_, polygon_seen_;
     std::vector<PatchAddress> touched_, fillers_;
     std::vector<double> filler_values_;

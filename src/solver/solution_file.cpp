@@ -147,6 +147,7 @@ std::vector<SolutionOption> solution_options(const SolverOptions& o) {
         {"--no-row-guard", b(!o.row_guard)}, // the command line's spelling of the switch
         {"--enclosed-fraction", hex(o.enclosed_fraction)},
         {"--shooter-parallax", hex(o.shooter_parallax)},
+        {"--clusters", o.clusters},
         {"--resolution", std::to_string(g.resolution)},
         {"--min-resolution", std::to_string(g.min_resolution)},
         {"--max-resolution", std::to_string(g.max_resolution)},
@@ -210,7 +211,10 @@ void apply_solution_option(SolverOptions& o, const SolutionOption& option,
         dbl(o.enclosed_fraction);
     else if (name == "--shooter-parallax")
         dbl(o.shooter_parallax);
-    else if (name == "--resolution")
+    else if (name == "--clusters") {
+        if (text != "auto" && text != "on" && text != "off") throw bad();
+        o.clusters = text;
+    } else if (name == "--resolution")
         integer(g.resolution);
     else if (name == "--min-resolution")
         integer(g.min_resolution);
@@ -274,6 +278,8 @@ std::string solution_bytes(const Solver& solver) {
     for (double v : st.provider) w.f64(v);
     w.u32(std::uint32_t(st.luminaires.size()));
     for (const dvec3& u : st.luminaires) w.dvec(u);
+    w.u64(st.clusters.size());
+    for (std::uint8_t e : st.clusters) w.u8(e);
     w.u64(fnv1a(w.bytes().data(), w.bytes().size()));
     return std::move(w.bytes());
 }
@@ -289,7 +295,7 @@ SolutionFile parse_solution(const std::string& bytes, const std::string& path) {
     Reader head(bytes, bytes.size(), path);
     for (std::size_t i = 0; i < sizeof kMagic; ++i) head.u8("magic");
     const std::uint32_t version = head.u32("version");
-    if (version != kSolutionFileVersion && version != 1)
+    if (version < 1 || version > kSolutionFileVersion)
         throw InputError(path, 0,
                          "solution file format version " + std::to_string(version) +
                              " is not supported (this hemirad reads versions 1 to " +
@@ -349,6 +355,14 @@ SolutionFile parse_solution(const std::string& bytes, const std::string& path) {
         const std::uint64_t n_lum = r.count(r.u32("luminaire count"), 24, "luminaires");
         f.state.luminaires.resize(n_lum);
         for (dvec3& u : f.state.luminaires) u = r.dvec("luminaire unshot power");
+    }
+    if (version >= 3) { // version 3: the cluster tree's view codes
+        const std::uint64_t n_clusters = r.count(r.u64("cluster count"), 1, "cluster view codes");
+        f.state.clusters.resize(n_clusters);
+        for (std::uint8_t& e : f.state.clusters) e = r.u8("cluster view code");
+    } else { // versions 1 and 2 coded parallax 16 steps to an octave from 2 up to 255
+        for (std::uint8_t& e : f.state.enclosed)
+            if (e >= 2) e = std::uint8_t(2 + (e - 2) / 2 > 127 ? 127 : 2 + (e - 2) / 2);
     }
     if (r.pos() != body)
         throw InputError(path, 0,

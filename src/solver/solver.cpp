@@ -8,6 +8,7 @@
 
 #include "hemirad/error.h"
 #include "hemirad/memory_guard.h"
+#include "solver/cluster_tree.h"
 #include "solver/solver_detail.h"
 
 namespace hemirad {
@@ -37,19 +38,28 @@ void validate_options(const SolverOptions& o) {
     if (o.hierarchy.max_depth < 0 || o.hierarchy.max_depth > kMaxDepth)
         throw InputError("--max-depth " + std::to_string(o.hierarchy.max_depth) +
                          " must be in 0.." + std::to_string(kMaxDepth));
+    if (o.clusters != "auto" && o.clusters != "on" && o.clusters != "off")
+        throw InputError("--clusters '" + o.clusters + "' must be auto, on or off");
     if (is_gpu_provider(o.ff)) validate_gpu_options(o.provider.gpu);
 }
 
 namespace {
 
-// View codes (Solver::view_): a parallax fraction in 2..255, log-spaced 16 to an octave.
-constexpr std::uint8_t kViewUnknown = 0, kViewEnclosed = 1;
-std::uint8_t parallax_code(double p) {
-    const double c = 2 + std::round(16 * std::log2(std::max(p, 1e-4) / 1e-4));
-    return std::uint8_t(std::clamp(c, 2.0, 255.0));
+// View codes (Solver::view_, cluster_view_): what a shooter's hemicube showed. 0 not known,
+// 1 an enclosed centre; 2..127 a measured parallax fraction (clusters: parallax plus near
+// light), P = 1e-4 * 2^((code - 2) / 8); the same plus 128: predicted from the parent's,
+// not yet measured (a node whose parent was refused inherits its parent's share scaled by
+// its size: the band a silhouette moves across grows with the shooter's size).
+constexpr std::uint8_t kViewUnknown = 0, kViewEnclosed = 1, kViewPredicted = 128;
+std::uint8_t parallax_code(double p, bool predicted = false) {
+    const double c = 2 + std::round(8 * std::log2(std::max(p, 1e-4) / 1e-4));
+    return std::uint8_t(std::clamp(c, 2.0, 127.0)) | (predicted ? kViewPredicted : 0);
 }
 double code_parallax(std::uint8_t code) {
-    return 1e-4 * std::exp2((code - 2) / 16.0);
+    return 1e-4 * std::exp2(((code & 127) - 2) / 8.0);
+}
+bool measured(std::uint8_t code) {
+    return code != kViewUnknown && !(code & kViewPredicted);
 }
 
 bool finite(const glm::vec3& v) {
@@ -99,8 +109,17 @@ Solver::Solver(const Scene& scene, const SolverOptions& options,
     init();
 }
 
+Solver::~Solver() = default;
+
 void Solver::init() {
     view_.assign(hierarchy_.node_count(), kViewUnknown);
+    const bool clusters = options_.clusters == "on" || (options_.clusters == "auto" &&
+                                                        scene_->polygons.size() > kClusterPolygons);
+    if (clusters && provider_->can_shoot_clusters() && scene_->polygons.size() > 1) {
+        clusters_ = std::make_unique<ClusterTree>(*scene_);
+        cluster_power_.assign(clusters_->nodes().size(), 0.0);
+        cluster_view_.assign(clusters_->nodes().size(), kViewUnknown);
+    }
     emitted_ = scene_->emitted_power();
     luminaire_unshot_.clear();
     for (const Luminaire& l : scene_->luminaires) luminaire_unshot_.push_back(dvec3(l.power()));
@@ -161,8 +180,21 @@ PatchAddress Solver::select_shooter(std::uint32_t polygon) {
     const double threshold = options_.shooter_power_fraction * sum(unshot_power());
     PatchAddress a{polygon, 0, 0};
     while (int(a.level) < depth) {
-        const bool must_descend = must_split(hierarchy_.node_id(a)) ||
-                                  std::sqrt(double(hierarchy_.node(a).area)) > max_size_;
+        const std::uint64_t id = hierarchy_.node_id(a);
+        const bool split = must_split(id);
+        if (split && view_[id] != kViewEnclosed) {
+            // Refused for parallax: the children, half as large, inherit half its share (a
+            // prediction that spares rendering a hemicube only to refuse it).
+            const std::uint8_t predicted = parallax_code(0.5 * code_parallax(view_[id]), true);
+            for (std::uint32_t c : patch_children(tri, a.level, a.index)) {
+                const std::uint64_t cid = hierarchy_.node_id({polygon, a.level + 1, c});
+                if (int(a.level) + 1 < depth && view_[cid] == kViewUnknown) {
+                    view_[cid] = predicted;
+                    learned_.emplace_back(cid, predicted);
+                }
+            }
+        }
+        const bool must_descend = split || std::sqrt(double(hierarchy_.node(a).area)) > max_size_;
         PatchAddress best = a;
         double best_power = -1;
         for (std::uint32_t c : patch_children(tri, a.level, a.index)) {
@@ -207,6 +239,12 @@ bool Solver::step() {
     rec.t_select = since(t0);
     if (best_luminaire > 0 && best_luminaire >= best) {
         shoot_luminaire(luminaire, rec);
+        finish_shot(rec, t_start);
+        return true;
+    }
+    // Clusters: the descent from the cluster tree's root ends at a cluster, which shoots, or
+    // at a single polygon, which shoots as a patch.
+    if (clusters_ && shoot_cluster(rec, polygon)) {
         finish_shot(rec, t_start);
         return true;
     }
@@ -265,7 +303,7 @@ PatchAddress Solver::shoot_patch(std::uint32_t polygon, ShotRecord& rec, dvec3& 
         rec.parallax = -1;
         if (int(sa.level) < hierarchy_.depth(polygon)) {
             const std::uint64_t id = hierarchy_.node_id(sa);
-            if (view_[id] == kViewUnknown) {
+            if (!measured(view_[id])) {
                 view_[id] = provider_->last_backface_fraction() > options_.enclosed_fraction
                                 ? kViewEnclosed
                                 : parallax_code(provider_->last_parallax_fraction());
@@ -299,6 +337,209 @@ void Solver::shoot_luminaire(std::size_t k, ShotRecord& rec) {
     rec.links = links_.size();
     deliver(power, 1.0, rec);
     luminaire_unshot_[k] = dvec3(0.0);
+}
+
+void Solver::update_cluster_power() {
+    const std::vector<ClusterTree::Node>& nodes = clusters_->nodes();
+    for (std::size_t i = nodes.size(); i-- > 0;) {
+        const ClusterTree::Node& n = nodes[i];
+        cluster_power_[i] = n.leaf() ? sum(hierarchy_.unshot_power(clusters_->order()[n.begin]))
+                                     : cluster_power_[n.left] + cluster_power_[n.right];
+    }
+}
+
+bool Solver::must_split_cluster(std::uint32_t node) const {
+    const std::uint8_t code = cluster_view_[node];
+    if (code == kViewEnclosed) return true;
+    if (code == kViewUnknown || options_.cluster_parallax <= 0) return false;
+    return code_parallax(code) * cluster_power_[node] > options_.cluster_parallax * sum(emitted_);
+}
+
+bool Solver::shoot_cluster(ShotRecord& rec, std::uint32_t& polygon) {
+    auto t0 = Clock::now();
+    update_cluster_power();
+    const ClusterTree& tree = *clusters_;
+    const double total = sum(unshot_power());
+    const double threshold = options_.shooter_power_fraction * total;
+    std::uint32_t node = 0;
+    for (;;) {
+        const ClusterTree::Node& n = tree.node(node);
+        if (n.leaf()) {
+            polygon = tree.order()[n.begin];
+            rec.t_select += since(t0);
+            return false;
+        }
+        const std::uint32_t best =
+            cluster_power_[n.left] >= cluster_power_[n.right] ? n.left : n.right;
+        const bool split = must_split_cluster(node);
+        if (split && cluster_view_[node] != kViewEnclosed) {
+            // Refused: the children inherit its misplaced share scaled by their size.
+            for (std::uint32_t c : {n.left, n.right})
+                if (cluster_view_[c] == kViewUnknown && !tree.node(c).leaf())
+                    cluster_view_[c] =
+                        parallax_code(code_parallax(cluster_view_[node]) * tree.node(c).radius() /
+                                          std::max(n.radius(), 1e-300),
+                                      true);
+        }
+        if (cluster_power_[best] >= threshold || split) {
+            node = best;
+            continue;
+        }
+        rec.t_select += since(t0);
+        // Its polygons, pushed, and what they emit: the lobes of their normals (within about
+        // 14 degrees merged), weighted by their unshot power.
+        t0 = Clock::now();
+        ClusterShooter c;
+        c.members.assign(tree.order().begin() + n.begin, tree.order().begin() + n.end);
+        std::sort(c.members.begin(), c.members.end());
+        dvec3 power(0.0), centre(0.0), axis(0.0);
+        double weight = 0;
+        std::vector<dvec3> lobe_sum;
+        for (std::uint32_t m : c.members) {
+            if (hierarchy_.needs_push_pull(m)) hierarchy_.push_pull(m);
+            const dvec3 u = hierarchy_.unshot_power(m);
+            const double w = sum(u);
+            if (!(w > 0)) continue;
+            const Polygon& poly = scene_->polygons[m];
+            power += u;
+            weight += w;
+            axis += w * poly.normal;
+            std::size_t k = 0;
+            for (; k < lobe_sum.size(); ++k)
+                if (glm::dot(glm::normalize(lobe_sum[k]), poly.normal) > 0.97) break;
+            if (k == lobe_sum.size()) {
+                if (lobe_sum.size() < 32) {
+                    lobe_sum.push_back(dvec3(0.0));
+                    c.weights.push_back(0);
+                } else { // the closest lobe
+                    double best_dot = -2;
+                    for (std::size_t q = 0; q < lobe_sum.size(); ++q) {
+                        const double d = glm::dot(glm::normalize(lobe_sum[q]), poly.normal);
+                        if (d > best_dot) best_dot = d, k = q;
+                    }
+                }
+            }
+            lobe_sum[k] += w * poly.normal;
+            c.weights[k] += w;
+        }
+        rec.t_push_pull += since(t0);
+        if (!(weight > 0)) { // nothing to shoot after all (cannot happen: the node has power)
+            node = best;
+            continue;
+        }
+        for (std::size_t k = 0; k < lobe_sum.size(); ++k) {
+            const double len = glm::length(lobe_sum[k]);
+            c.normals.push_back(len > 0 ? lobe_sum[k] / len : dvec3(0, 1, 0));
+            c.weights[k] /= weight;
+        }
+        // It shoots from the area-weighted centre of its polygons: a point that does not move
+        // with its light, so that what its hemicube showed once holds at the next shot.
+        double area = 0;
+        for (std::uint32_t m : c.members) {
+            const Polygon& poly = scene_->polygons[m];
+            centre += poly.area * poly.centroid();
+            area += poly.area;
+        }
+        c.centre = centre / area;
+        const double axis_len = glm::length(axis);
+        c.axis = axis_len > 1e-6 * weight ? axis / axis_len : dvec3(0, 1, 0);
+        double r2 = 0;
+        for (std::uint32_t m : c.members) {
+            const Polygon& poly = scene_->polygons[m];
+            for (int k = 0; k < poly.count; ++k) {
+                const dvec3 d = poly.v[k] - c.centre;
+                r2 = std::max(r2, glm::dot(d, d));
+            }
+        }
+        c.radius = std::sqrt(r2);
+        // A flat cluster (every polygon in one plane, facing the axis) shoots as the rectangle
+        // around its polygons in that plane (ClusterShooter::rect): the area kernel is right
+        // next to it, where a point's is not.
+        bool flat = true;
+        const double plane = glm::dot(c.axis, c.centre);
+        const double tol = 1e-6 * c.radius;
+        for (std::size_t k = 0; k < c.members.size() && flat; ++k) {
+            const Polygon& poly = scene_->polygons[c.members[k]];
+            flat = glm::dot(poly.normal, c.axis) > 0.99985; // 1 degree
+            for (int q = 0; q < poly.count && flat; ++q)
+                flat = std::abs(glm::dot(poly.v[q], c.axis) - plane) <= tol;
+        }
+        if (flat) {
+            const Polygon& first = scene_->polygons[c.members.front()];
+            const dvec3 e = first.v[1] - first.v[0];
+            const dvec3 T = glm::normalize(e - glm::dot(e, c.axis) * c.axis);
+            const dvec3 B = glm::cross(c.axis, T);
+            glm::dvec2 lo(1e300), hi(-1e300);
+            for (std::uint32_t m : c.members) {
+                const Polygon& poly = scene_->polygons[m];
+                for (int q = 0; q < poly.count; ++q) {
+                    const dvec3 d = poly.v[q] - c.centre;
+                    const glm::dvec2 p2(glm::dot(d, T), glm::dot(d, B));
+                    lo = glm::min(lo, p2);
+                    hi = glm::max(hi, p2);
+                }
+            }
+            const dvec3 o = c.centre - glm::dot(c.centre, c.axis) * c.axis + plane * c.axis;
+            c.rect.count = 4;
+            c.rect.corners = {o + lo.x * T + lo.y * B, o + hi.x * T + lo.y * B,
+                              o + hi.x * T + hi.y * B, o + lo.x * T + hi.y * B};
+            c.rect.centre = o;
+            c.rect.area = (hi.x - lo.x) * (hi.y - lo.y);
+            if (!(c.rect.area > 0)) c.rect.count = 0;
+        }
+        c.unshot_power = weight;
+        c.power_fraction = total > 0 ? std::min(1.0, weight / total) : 1.0;
+
+        t0 = Clock::now();
+        provider_->shoot_cluster(c, links_);
+        rec.t_form_factors += since(t0);
+        for (const FormFactorProvider::Timing& t : provider_->last_timings()) {
+            auto it = std::find_if(rec.ff_phases.begin(), rec.ff_phases.end(),
+                                   [&](const auto& p) { return !std::strcmp(p.phase, t.phase); });
+            if (it == rec.ff_phases.end())
+                rec.ff_phases.push_back(t);
+            else
+                it->seconds += t.seconds;
+        }
+        // Its misplaced share, once: parallax (what its point sees that its extent would see
+        // otherwise) plus the light it sends within twice its radius.
+        const double misplaced = provider_->last_parallax_fraction() +
+                                 provider_->last_near_fraction() +
+                                 provider_->last_backface_fraction();
+        rec.parallax = misplaced;
+        // An enclosed centre (its light mostly on the backs of polygons): never shot, measured
+        // or not.
+        if (provider_->last_backface_fraction() > options_.enclosed_fraction) {
+            cluster_view_[node] = kViewEnclosed;
+            ++rec.refined;
+            node = best;
+            t0 = Clock::now();
+            continue;
+        }
+        if (!measured(cluster_view_[node])) {
+            cluster_view_[node] = provider_->last_backface_fraction() > options_.enclosed_fraction
+                                      ? kViewEnclosed
+                                      : parallax_code(misplaced);
+            if (must_split_cluster(node)) {
+                ++rec.refined;
+                node = best;
+                t0 = Clock::now();
+                continue;
+            }
+        }
+        rec.cluster = long(node);
+        rec.cluster_polygons = n.size();
+        rec.shooter = {c.members.front(), 0, 0};
+        rec.shooter_power = weight;
+        rec.links = links_.size();
+        deliver(power, 1.0, rec);
+        t0 = Clock::now();
+        for (std::uint32_t m : c.members)
+            if (sum(hierarchy_.unshot_power(m)) > 0) hierarchy_.clear_unshot({m, 0, 0});
+        rec.t_update += since(t0);
+        last_polygon_ = -1;
+        return true;
+    }
 }
 
 void Solver::deliver(const dvec3& dB, double area_s, ShotRecord& rec) {
@@ -415,6 +656,7 @@ Solver::State Solver::save_state() const {
     st.enclosed = view_;
     st.provider = provider_->save_state();
     st.luminaires = luminaire_unshot_;
+    st.clusters = cluster_view_;
     return st;
 }
 
@@ -433,6 +675,8 @@ void Solver::restore_state(const State& st) {
     expect("polygons (dirty flags)", st.dirty.size(), dirty.size());
     expect("view codes", st.enclosed.size(), view_.size());
     expect("luminaires", st.luminaires.size(), luminaire_unshot_.size());
+    if (!st.clusters.empty() || !cluster_view_.empty())
+        expect("cluster view codes", st.clusters.size(), cluster_view_.size());
     for (std::size_t k = 0; k < st.luminaires.size(); ++k)
         if (!finite(st.luminaires[k]) || st.luminaires[k].x < 0)
             throw InputError("saved solver state: luminaire " + std::to_string(k) +
@@ -457,6 +701,7 @@ void Solver::restore_state(const State& st) {
     hierarchy_.restore_state(st.nodes, st.unshot, st.dirty);
     view_ = st.enclosed;
     luminaire_unshot_ = st.luminaires;
+    cluster_view_ = st.clusters;
     restore(c);
 }
 

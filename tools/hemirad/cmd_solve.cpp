@@ -36,10 +36,14 @@ Json address_json(const PatchAddress& a) {
 Json shot_json(const ShotRecord& r) {
     Json j = Json::object();
     j["shot"] = r.shot;
-    if (r.luminaire >= 0)
+    if (r.luminaire >= 0) {
         j["luminaire"] = r.luminaire;
-    else
+    } else if (r.cluster >= 0) {
+        j["cluster"] = r.cluster;
+        j["cluster_polygons"] = r.cluster_polygons;
+    } else {
         j["shooter"] = address_json(r.shooter);
+    }
     j["shooter_power"] = r.shooter_power;
     j["links"] = r.links;
     if (r.refined) j["refined"] = r.refined;

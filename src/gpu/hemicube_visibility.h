@@ -1,0 +1,82 @@
+// Visibility read from a rendered hemicube (hemicube.h): the patch IDs it holds make it a
+// shadow map of polygons. Used to link a receiver only where the shooter sees it: a node
+// that a silhouette crosses is linked by the parts of it that are seen (solver issue: light
+// must not reach what the shooter cannot see, and a form-factor row must not exceed 1).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "gpu/hemicube.h"
+
+namespace hemirad::gpu {
+
+/// Does the open segment from `from` along `d` (t in (0, 1 - 1e-6), in units of d) cross the
+/// polygon q (convex, its edges excluded by a relative margin)?
+bool segment_crosses(const Polygon& q, const dvec3& from, const dvec3& d);
+
+class HemicubeVisibility {
+  public:
+    /// The hemicube `rgba` (IDs as in FormFactorProvider::HemicubeImage) rendered with
+    /// `layout` from the shooter whose frame is `frame`, its eye at `eye`. Keeps pointers: all
+    /// must outlive this object.
+    HemicubeVisibility(const Scene& scene, const HemicubeLayout& layout,
+                       const HemicubeFrame& frame, const float* rgba, const dvec3& eye);
+
+    /// Is point x, on polygon `own`, seen from the eye? It is if the pixel its direction
+    /// falls in shows `own`, nothing, or a polygon that the segment from the eye to x does
+    /// not cross (the pixel's centre ray met it, x's ray passes beside it). Points below the
+    /// hemicube's plane are not seen.
+    bool visible(const dvec3& x, std::uint32_t own) const;
+
+    /// The same as a depth map would tell it, for a point whose polygon covers no pixel (it
+    /// is smaller than one): x is hidden if the plane of what its pixel shows lies in front of
+    /// it along its ray (the shown surface is taken to fill the pixel: a sub-pixel polygon
+    /// behind a thin occluder is not seen through it).
+    bool visible_in_depth_map(const dvec3& x, std::uint32_t own) const;
+
+    /// Calls mark(i) for every pixel i that shows the front of a polygon P next to a pixel
+    /// (4-neighbour, same face) whose centre ray meets P (within P) behind what that pixel
+    /// shows: P goes on behind an occluder there, so the node pixel i shows is partly hidden.
+    template <class Mark> void occlusion_edges(Mark mark) const;
+
+  private:
+    /// Direction (not normalised) through the centre of pixel (i, j) of face f.
+    dvec3 ray(int f, int i, int j) const;
+    /// The polygon pixel `at` shows (front or back), or -1 for nothing.
+    long shown(std::size_t at) const;
+    /// Does pixel (i, j) of face f show something in front of polygon p, where its ray meets
+    /// p within p?
+    bool hides(int f, int i, int j, std::uint32_t p) const;
+
+    const Scene* scene_;
+    const HemicubeLayout* layout_;
+    HemicubeFrame frame_;
+    const float* rgba_;
+    dvec3 eye_;
+};
+
+template <class Mark> void HemicubeVisibility::occlusion_edges(Mark mark) const {
+    const HemicubeLayout& L = *layout_;
+    for (int f = 0; f < 5; ++f) {
+        const HemicubeLayout::Face& face = L.faces[f];
+        const auto at = [&](int i, int j) {
+            return std::size_t(face.y + j) * std::size_t(L.width) + std::size_t(face.x + i);
+        };
+        const auto test = [&](int i0, int j0, int i1, int j1) {
+            const std::size_t a = at(i0, j0), b = at(i1, j1);
+            const long pa = shown(a), pb = shown(b);
+            if (pa == pb) return;
+            // Each way: a front of P at one pixel, something else at its neighbour.
+            if (pa >= 0 && rgba_[4 * a + 2] > 0 && hides(f, i1, j1, std::uint32_t(pa))) mark(a);
+            if (pb >= 0 && rgba_[4 * b + 2] > 0 && hides(f, i0, j0, std::uint32_t(pb))) mark(b);
+        };
+        for (int j = 0; j < face.h; ++j)
+            for (int i = 0; i < face.w; ++i) {
+                if (i + 1 < face.w) test(i, j, i + 1, j);
+                if (j + 1 < face.h) test(i, j, i, j + 1);
+            }
+    }
+}
+
+} // namespace hemirad::gpu

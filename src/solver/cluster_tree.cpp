@@ -1,0 +1,72 @@
+// The shooting clusters' tree (cluster_tree.h): median splits of polygon centroids.
+#include "solver/cluster_tree.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace hemirad {
+
+ClusterTree::ClusterTree(const Scene& scene) : scene_(&scene) {
+    const std::size_t n = scene.polygons.size();
+    if (n == 0) return;
+    order_.resize(n);
+    std::iota(order_.begin(), order_.end(), 0u);
+    leaf_.assign(n, 0);
+    std::vector<dvec3> centroid(n);
+    for (std::size_t i = 0; i < n; ++i) centroid[i] = scene.polygons[i].centroid();
+    // Orientation counts as position, so that a small cluster holds polygons facing alike
+    // (both faces of a slab, or a floor and the ceiling under it, split apart early): the
+    // normal scaled by an eighth of the scene's size is a further three coordinates.
+    normal_scale_ = scene.bounds().diagonal() / 8;
+    nodes_.reserve(2 * n - 1);
+    parent_.reserve(2 * n - 1);
+    build(0, std::uint32_t(n), 0, centroid);
+}
+
+std::uint32_t ClusterTree::build(std::uint32_t begin, std::uint32_t end, std::uint32_t parent,
+                                 const std::vector<dvec3>& centroid) {
+    const auto id = std::uint32_t(nodes_.size());
+    nodes_.emplace_back();
+    parent_.push_back(parent);
+    Node node;
+    node.begin = begin;
+    node.end = end;
+    dvec3 clo(1e300), chi(-1e300), nlo(1e300), nhi(-1e300);
+    for (std::uint32_t k = begin; k < end; ++k) {
+        const Polygon& p = scene_->polygons[order_[k]];
+        for (int c = 0; c < p.count; ++c) {
+            node.lo = glm::min(node.lo, p.v[c]);
+            node.hi = glm::max(node.hi, p.v[c]);
+        }
+        node.area += p.area;
+        clo = glm::min(clo, centroid[order_[k]]);
+        chi = glm::max(chi, centroid[order_[k]]);
+        nlo = glm::min(nlo, p.normal * normal_scale_);
+        nhi = glm::max(nhi, p.normal * normal_scale_);
+    }
+    if (end - begin == 1) {
+        leaf_[order_[begin]] = id;
+        nodes_[id] = node;
+        return id;
+    }
+    // Split at the median centroid along the longest axis of the centroids' bounds; ties
+    // broken by polygon id, so the tree does not depend on the sort's implementation.
+    const double e[6] = {chi.x - clo.x, chi.y - clo.y, chi.z - clo.z,
+                         nhi.x - nlo.x, nhi.y - nlo.y, nhi.z - nlo.z};
+    const int axis = int(std::max_element(e, e + 6) - e);
+    const auto key = [&](std::uint32_t p) {
+        return axis < 3 ? centroid[p][axis] : scene_->polygons[p].normal[axis - 3];
+    };
+    const std::uint32_t mid = begin + (end - begin) / 2;
+    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                     [&](std::uint32_t a, std::uint32_t b) {
+                         const double ca = key(a), cb = key(b);
+                         return ca != cb ? ca < cb : a < b;
+                     });
+    node.left = build(begin, mid, id, centroid);
+    node.right = build(mid, end, id, centroid);
+    nodes_[id] = node;
+    return id;
+}
+
+} // namespace hemirad

@@ -1,0 +1,58 @@
+// Clusters of polygons for shooting (Smits, Arvo & Greenberg 1994, "A clustering algorithm
+// for radiosity in complex environments"; Sillion 1995, "A unified hierarchical algorithm for
+// global illumination with scattering volumes and object clusters"): a binary tree over the
+// scene's polygons, built by splitting them at the median of their centroids along the
+// longest axis, so that every node holds a compact group of nearby polygons. The solver keeps
+// each node's unshot power (the sum of its polygons') and shoots a whole node at once when
+// its power is spread over many small polygons, as one point source at the node's centre
+// whose intensity is the sum of its polygons' cosine lobes (FormFactorProvider::
+// shoot_cluster). Internal header.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "hemirad/scene.h"
+
+namespace hemirad {
+
+class ClusterTree {
+  public:
+    struct Node {
+        dvec3 lo{1e300}, hi{-1e300}; ///< bounds of the polygons' corners [unit]
+        std::uint32_t begin = 0;     ///< first polygon in order()
+        std::uint32_t end = 0;       ///< one past the last
+        std::uint32_t left = 0;      ///< children (0: a leaf, holding one polygon)
+        std::uint32_t right = 0;
+        double area = 0; ///< of its polygons [unit^2]
+        bool leaf() const { return left == 0; }
+        std::uint32_t size() const { return end - begin; }
+        dvec3 centre() const { return 0.5 * (lo + hi); }
+        double radius() const { return 0.5 * glm::length(hi - lo); }
+    };
+
+    /// The tree of every polygon of `scene` (none for an empty scene). Node 0 is the root;
+    /// children follow their parent, so a pass from the last node to the first visits
+    /// children before parents. Deterministic.
+    explicit ClusterTree(const Scene& scene);
+
+    const std::vector<Node>& nodes() const { return nodes_; }
+    const Node& node(std::uint32_t i) const { return nodes_[i]; }
+    /// Polygon ids, each node's polygons contiguous: order()[begin .. end).
+    const std::vector<std::uint32_t>& order() const { return order_; }
+    /// The leaf node of each polygon.
+    std::uint32_t leaf_of(std::uint32_t polygon) const { return leaf_[polygon]; }
+    /// The parent of each node (the root's is itself).
+    std::uint32_t parent(std::uint32_t node) const { return parent_[node]; }
+
+  private:
+    std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::uint32_t parent,
+                        const std::vector<dvec3>& centroid);
+
+    const Scene* scene_;
+    double normal_scale_ = 0; ///< [unit]: normals count as positions this far apart
+    std::vector<Node> nodes_;
+    std::vector<std::uint32_t> order_, leaf_, parent_;
+};
+
+} // namespace hemirad
