@@ -7,8 +7,8 @@
 #include <limits>
 #include <string>
 
+#include "hemirad/draw.h"
 #include "hemirad/image.h"
-#include "output/draw.h"
 
 namespace fs = std::filesystem;
 using namespace hemirad;

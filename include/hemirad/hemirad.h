@@ -24,6 +24,7 @@
 //   report.h                probes, the JSON report, probe CSVs
 //   grid.h                  calculation grids (average, minimum, uniformity; lux)
 //   render.h, image.h       images of the solution (GL), EXR/PNG, tone mapping
+//   draw.h                  text, shapes, false colour, contact sheets and plots on images
 //   export.h                PLY meshes and lightmap atlases
 //   solution_file.h         saving and resuming a solve
 //   reference.h             the Monte-Carlo reference (path tracer) at points
@@ -34,6 +35,7 @@
 #pragma once
 
 #include "hemirad/collective.h"
+#include "hemirad/draw.h"
 #include "hemirad/error.h"
 #include "hemirad/export.h"
 #include "hemirad/form_factors.h"

@@ -13,9 +13,11 @@
 
 #include <glm/glm.hpp>
 
+#include "hemirad/visibility.h"
+
 namespace hemirad {
 
-class Json {
+class HEMIRAD_API Json {
   public:
     Json() : v_(nullptr) {}
     Json(std::nullptr_t) : v_(nullptr) {}

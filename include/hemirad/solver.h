@@ -18,6 +18,7 @@
 #include "hemirad/hierarchy.h"
 #include "hemirad/provider.h"
 #include "hemirad/scene.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -84,12 +85,12 @@ struct ShotRecord {
 
 /// Checks the options a user can get wrong (InputError naming the option and its value).
 /// The Solver's constructor calls it; tools call it first, before any expensive set-up.
-void validate_options(const SolverOptions& options);
+HEMIRAD_API void validate_options(const SolverOptions& options);
 
 enum class StopReason { Running, Converged, MaxShots, TimeLimit, NothingToShoot };
-const char* to_string(StopReason r);
+HEMIRAD_API const char* to_string(StopReason r);
 
-class Solver {
+class HEMIRAD_API Solver {
   public:
     /// Builds the hierarchy and the provider named by options.ff. Throws InputError for bad
     /// options, RuntimeError if the provider cannot start (no GL context).

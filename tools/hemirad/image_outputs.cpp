@@ -7,11 +7,11 @@
 #include <optional>
 #include <vector>
 
+#include "hemirad/draw.h"
 #include "hemirad/error.h"
 #include "hemirad/image.h"
 #include "hemirad/photometry.h"
 #include "hemirad/render.h"
-#include "output/draw.h"
 
 namespace hemirad::cli {
 

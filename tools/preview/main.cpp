@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "../../src/output/draw.h"
 #include "cli/cli_options.h"
+#include "hemirad/draw.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/image.h"
