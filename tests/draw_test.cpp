@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "core/colour.h"
 #include "hemirad/draw.h"
 #include "hemirad/image.h"
 

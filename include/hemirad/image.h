@@ -100,12 +100,6 @@ inline double luminance(double r, double g, double b) {
     return 0.2126 * r + 0.7152 * g + 0.0722 * b;
 }
 
-/// The sRGB transfer function (IEC 61966-2-1 OETF), exact: 12.92 v below 0.0031308, else
-/// 1.055 v^(1/2.4) - 0.055. Input is clamped to [0, 1].
-HEMIRAD_API double srgb_encode(double linear);
-/// Its inverse (sRGB-encoded [0, 1] -> linear [0, 1]).
-HEMIRAD_API double srgb_decode(double encoded);
-
 /// Linear float image -> 8-bit sRGB, in this order, per pixel:
 ///   1. scale by k = (auto_exposure ? auto_exposure_scale(image) : 1) * 2^exposure;
 ///   2. the operator (below) maps scaled linear RGB to display-linear [0, 1];

@@ -41,9 +41,6 @@ struct HEMIRAD_API Texture {
     glm::dvec3 mean() const;
 };
 
-/// sRGB transfer function, decoding: encoded value in [0, 1] to linear (IEC 61966-2-1).
-HEMIRAD_API double srgb_to_linear(double encoded);
-
 /// A texture from linear texels (row 0 the top), with its mipmap. width, height >= 1 and
 /// texels.size() == width * height (checked).
 HEMIRAD_API Texture make_texture(const std::string& name, int width, int height,

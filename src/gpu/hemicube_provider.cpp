@@ -10,6 +10,7 @@
 #include <cmath>
 #include <deque>
 
+#include "core/timer.h"
 #include "gpu/hemicube.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
@@ -19,10 +20,8 @@ namespace hemirad {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) {
-    return std::chrono::duration<double>(Clock::now() - t).count();
-}
+using Clock = SteadyClock;             // core/timer.h
+constexpr auto since = &seconds_since; // [s]
 
 enum class Mode { Hemicube, Analytic, Hybrid };
 
