@@ -17,6 +17,7 @@
 //   texture.h               textures (PNG, JPEG: map_Kd, glTF baseColorTexture) as reflectance
 //   photometry.h            luminaires: IES files, point sources, spots
 //   solver.h                SolverOptions, Solver (the loop), ShotRecord (the shot log)
+//   solver_options.h        the options table: every option's name, default, range, help
 //   collective.h            what a solve across MPI ranks needs (rank, size, all-gather)
 //   provider.h              form-factor methods (hybrid, analytic, hemicube; reference, pdm, sr)
 //   hierarchy.h, patch.h    the patch quadtrees that hold the solution
@@ -57,6 +58,7 @@
 #include "hemirad/scene_io.h"
 #include "hemirad/solution_file.h"
 #include "hemirad/solver.h"
+#include "hemirad/solver_options.h"
 #include "hemirad/texture.h"
 #include "hemirad/validation_scenes.h"
 #include "hemirad/version.h"

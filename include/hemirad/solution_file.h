@@ -42,11 +42,11 @@ inline constexpr std::uint32_t kSolutionFileVersion = 2;
 /// An option that affects results, as (command-line name, exact value text).
 using SolutionOption = std::pair<std::string, std::string>;
 
-/// The options of `o` that affect results: --ff, the hierarchy options, the shooter options
-/// and the provider options. A new option of SolverOptions, ProviderOptions or
-/// HierarchyOptions that changes results must be added here and to apply_solution_option(). Not
-/// included, so free to change on resume: --tolerance,
-/// --max-shots, --time-limit (stop criteria), --backend and --device (where it runs).
+/// The options of `o` that affect results, in the order of the options table
+/// (solver_options.h): those whose SolverOption::saved is true, named as on the command line,
+/// values as SolverOption::text() writes them. Not included, so free to change on resume: the
+/// stop criteria (--tolerance, --max-shots, --time-limit), --memory-limit, and where the solve
+/// runs (--backend, --device).
 HEMIRAD_API std::vector<SolutionOption> solution_options(const SolverOptions& o);
 /// Sets the option `name` of `o` from its saved text. Throws InputError for an unknown name
 /// or a malformed value (`file` names the solution file in the message).

@@ -7,6 +7,8 @@
 #include "core/parallel.h"
 #include "ff/cpu_linking.h"
 #include "hemirad/error.h"
+#include "hemirad/solver.h"
+#include "hemirad/solver_options.h"
 
 namespace hemirad {
 
@@ -183,17 +185,9 @@ void CpuProvider::shoot_point(const Luminaire& l, std::vector<Link>& links) {
 std::unique_ptr<FormFactorProvider> make_cpu_provider(const std::string& name, const Scene& scene,
                                                       const Discretisation& disc,
                                                       const CpuProviderOptions& o) {
-    const auto bad = [](const char* what, double value, const char* range) {
-        std::ostringstream m;
-        m << "form-factor option " << what << " = " << value << " is out of range " << range;
-        throw InputError(m.str());
-    };
-    if (!(o.link_angle > 0 && o.link_angle <= 1)) bad("link_angle", o.link_angle, "(0, 1]");
-    if (o.visibility_samples < 1 || o.visibility_samples > 16)
-        bad("visibility_samples", o.visibility_samples, "1..16");
-    if (o.gauss_order < 1 || o.gauss_order > 16) bad("gauss_order", o.gauss_order, "1..16");
-    if (o.sr_rays < 1) bad("sr_rays", o.sr_rays, ">= 1");
-    if (o.sr_points < 1) bad("sr_points", o.sr_points, ">= 1");
+    SolverOptions ranges; // the ranges are the options table's (solver_options.h)
+    ranges.provider.cpu = o;
+    validate_solver_options(ranges, SolverOption::Check::Cpu);
     if (name != "reference" && name != "pdm" && name != "sr")
         throw InputError("unknown form-factor method '" + name +
                          "' (expected reference, pdm or sr)");
