@@ -1,4 +1,4 @@
-// Error channels (STYLE.md §3): InputError for bad input (files, options,
+// Error channels (docs/design.md, "Error channels"): InputError for bad input (files, options,
 // scene content), HEMIRAD_CHECK for broken invariants (prints the values and aborts).
 #pragma once
 

@@ -1,4 +1,4 @@
-// The interface between the solver and whatever computes form factors (DESIGN.md
+// The interface between the solver and whatever computes form factors (docs/design.md,
 // "Data flow"): the solver asks "form factors from this shooter", a provider answers with
 // links. The CPU reference providers and the GPU hemicube provider stand behind it alike.
 #pragma once

@@ -1,5 +1,5 @@
 // Scene model: planar convex polygons (triangles and quads) with diffuse materials.
-// Conventions (DESIGN.md "Conventions for results"): lengths in scene units; Ke is emitted
+// Conventions (docs/design.md, "Conventions for results"): lengths in scene units; Ke is emitted
 // radiance per channel, emitted radiosity (exitance) is pi*Ke; Kd is reflectance rho in [0,1).
 #pragma once
 

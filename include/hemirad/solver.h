@@ -1,5 +1,5 @@
 // Progressive-refinement radiosity (shooting) over the patch hierarchy (paper 002 §2, §4).
-// The API is a loop (STYLE.md §4):
+// The API is a loop (docs/design.md, "The solver's API is a loop"):
 //
 //     Solver s(scene, options);
 //     while (s.step()) show(s.last_shot());

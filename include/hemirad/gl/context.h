@@ -1,4 +1,4 @@
-// A headless OpenGL 4.5 core context (DESIGN.md "Headless GL"): EGL surfaceless (or an
+// A headless OpenGL 4.5 core context (docs/design.md, "Headless GL"): EGL surfaceless (or an
 // enumerated EGL device), with OSMesa as the fallback. One small platform class per backend
 // behind this interface; no GL or EGL types here.
 //
