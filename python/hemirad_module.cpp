@@ -2,7 +2,7 @@
 // out), per-group statistics, the shot log and the JSON report.
 //
 //     import hemirad, numpy as np
-//     s = hemirad.Solver(hemirad.load_scene("cornell"), tolerance=1e-3)
+//     s = hemirad.Solver(hemirad.load_scene("cornell"), tolerance=1e-3)   # any option by key
 //     s.solve(progress=lambda shot: print(shot["shot"], shot["error_bound"]))
 //     E = s.irradiance(points, normals)   # (N, 3) float64 array [W unit^-2], RGB
 //
@@ -17,6 +17,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <variant>
 
 #include "hemirad/hemirad.h"
 
@@ -76,6 +77,85 @@ std::vector<dvec3> rows3(const py::handle& obj, const char* what) {
                                   " is not finite");
     }
     return out;
+}
+
+/// The Python value of an option of `o` (solver_options.h): str, float, int or bool.
+py::object option_value(const SolverOption& option, const SolverOptions& o) {
+    const SolverOption::Field f = option.field(const_cast<SolverOptions&>(o));
+    if (auto p = std::get_if<std::string*>(&f)) return py::str(**p);
+    if (auto p = std::get_if<double*>(&f)) return py::float_(**p);
+    if (auto p = std::get_if<int*>(&f)) return py::int_(**p);
+    if (auto p = std::get_if<long*>(&f)) return py::int_(**p);
+    if (auto p = std::get_if<bool*>(&f)) return py::bool_(**p != option.inverted);
+    return py::int_(*std::get<std::uint64_t*>(f));
+}
+
+/// Sets an option of `o` from a Python value; TypeError for a value of the wrong type.
+void set_option(const SolverOption& option, SolverOptions& o, const py::handle& value) {
+    const std::string key = option.key();
+    const SolverOption::Field f = option.field(o);
+    try {
+        if (auto p = std::get_if<std::string*>(&f)) {
+            **p = value.cast<std::string>();
+        } else if (auto p = std::get_if<double*>(&f)) {
+            **p = value.cast<double>();
+        } else if (auto p = std::get_if<int*>(&f)) {
+            **p = value.cast<int>();
+        } else if (auto p = std::get_if<long*>(&f)) {
+            **p = value.cast<long>();
+        } else if (auto p = std::get_if<bool*>(&f)) {
+            if (!py::isinstance<py::bool_>(value)) throw py::cast_error();
+            **p = value.cast<bool>() != option.inverted;
+        } else {
+            std::uint64_t* out = std::get<std::uint64_t*>(f);
+            if (option.size && py::isinstance<py::str>(value))
+                *out = parse_memory_size(value.cast<std::string>(), key); // "4G"
+            else
+                *out = value.cast<std::uint64_t>();
+        }
+    } catch (const py::cast_error&) {
+        throw py::type_error(
+            "option " + key + "=" + py::repr(value).cast<std::string>() + ": expected " +
+            option_value(option, SolverOptions{}).get_type().attr("__name__").cast<std::string>() +
+            (option.size ? " or str (a size such as '4G')" : ""));
+    }
+}
+
+/// SolverOptions from keyword arguments named as the options table's keys; TypeError for a
+/// keyword that is no option.
+SolverOptions options_from(const py::kwargs& kwargs) {
+    SolverOptions o;
+    for (const auto& [k, v] : kwargs) {
+        const std::string key = k.cast<std::string>();
+        const SolverOption* option = find_solver_option(key);
+        if (!option || option->key() != key)
+            throw py::type_error("Solver() got an unexpected keyword argument '" + key +
+                                 "' (the options are hemirad.solver_option_table()'s keys)");
+        set_option(*option, o, v);
+    }
+    return o;
+}
+
+/// Every option of `o` as a dict, by key.
+py::dict options_dict(const SolverOptions& o) {
+    py::dict d;
+    for (const SolverOption& option : solver_option_table())
+        d[py::str(option.key())] = option_value(option, o);
+    return d;
+}
+
+/// The keyword options with their defaults and help, for Solver's docstring.
+std::string options_doc() {
+    std::string doc = "Progressive radiosity. Solver(scene, **options): keyword options are those "
+                      "of `hemirad solve` with '_' for '-', with the same defaults:\n";
+    const SolverOptions defaults;
+    for (const SolverOption& option : solver_option_table()) {
+        doc += "\n  " + option.key() + "=" +
+               py::repr(option_value(option, defaults)).cast<std::string>();
+        doc += std::string("  ") + option.help;
+        if (*option.unit) doc += std::string(" [") + option.unit + "]";
+    }
+    return doc;
 }
 
 /// A Solver that also keeps its shot log, and the scene it solves (a copy: the Python
@@ -221,33 +301,36 @@ PYBIND11_MODULE(hemirad, m) {
         "options of `hemirad solve` (--subdiv, --rho, --rings, --max-reflectance).");
     m.def("builtin_names", []() { return std::string(builtin_names()); });
 
-    py::class_<PySolver>(m, "Solver",
-                         "Progressive radiosity. Keyword options are those of `hemirad solve` "
-                         "with '_' for '-', and the same defaults.")
-        .def(py::init([](const Scene& scene, const std::string& ff, double tolerance,
-                         long max_shots, double time_limit, double patch_size, int max_depth,
-                         int resolution, double lod_bias, const std::string& backend) {
-                 SolverOptions o;
-                 o.ff = ff;
-                 o.tolerance = tolerance;
-                 o.max_shots = max_shots;
-                 o.time_limit = time_limit;
-                 o.hierarchy.patch_size = patch_size;
-                 o.hierarchy.max_depth = max_depth;
-                 o.provider.gpu.resolution = resolution;
-                 o.provider.gpu.lod_bias = lod_bias;
-                 o.provider.gpu.backend = backend;
-                 return std::make_unique<PySolver>(scene, o);
+    m.def(
+        "solver_option_table",
+        []() {
+            py::list l;
+            const SolverOptions defaults;
+            for (const SolverOption& option : solver_option_table()) {
+                py::dict d;
+                d["key"] = option.key();
+                d["flag"] = option.flag;
+                d["default"] = option_value(option, defaults);
+                d["unit"] = option.unit;
+                d["help"] = option.help;
+                d["saved"] = option.saved;
+                l.append(d);
+            }
+            return l;
+        },
+        "Every solver option (the options table, hemirad/solver_options.h): key, flag, default, "
+        "unit, help, saved (kept in solution files).");
+    m.def(
+        "solver_options",
+        [](const py::kwargs& kwargs) { return options_dict(options_from(kwargs)); },
+        "The solver options that Solver(scene, **kwargs) would use, as a dict by key (nothing is "
+        "checked but the names and types).");
+
+    py::class_<PySolver>(m, "Solver", options_doc().c_str())
+        .def(py::init([](const Scene& scene, const py::kwargs& kwargs) {
+                 return std::make_unique<PySolver>(scene, options_from(kwargs));
              }),
-             py::arg("scene"), py::kw_only(), py::arg("ff") = SolverOptions{}.ff,
-             py::arg("tolerance") = SolverOptions{}.tolerance,
-             py::arg("max_shots") = SolverOptions{}.max_shots,
-             py::arg("time_limit") = SolverOptions{}.time_limit,
-             py::arg("patch_size") = HierarchyOptions{}.patch_size,
-             py::arg("max_depth") = HierarchyOptions{}.max_depth,
-             py::arg("resolution") = GpuProviderOptions{}.resolution,
-             py::arg("lod_bias") = GpuProviderOptions{}.lod_bias,
-             py::arg("backend") = GpuProviderOptions{}.backend)
+             py::arg("scene"))
         .def("step", &PySolver::step, "Shoots once; False once a stop criterion holds.")
         .def("solve", &PySolver::solve, py::arg("progress") = py::none(),
              "Shoots until converged (or max_shots, time_limit); progress(shot) is called "
@@ -282,6 +365,9 @@ PYBIND11_MODULE(hemirad, m) {
             "stop_reason",
             [](PySolver& s) { return std::string(to_string(s.solver().stop_reason())); })
         .def_property_readonly("seconds", [](PySolver& s) { return s.solver().seconds(); })
+        .def_property_readonly(
+            "options", [](PySolver& s) { return options_dict(s.solver().options()); },
+            "The solver's options, as a dict by key (solver_option_table()).")
         .def_property_readonly("form_factors",
                                [](PySolver& s) { return s.solver().provider().name(); })
         .def_property_readonly("scene", &PySolver::scene, py::return_value_policy::copy);

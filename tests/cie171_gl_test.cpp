@@ -4,7 +4,7 @@
 // here from the stated geometry:
 //  - closed forms: Howell B-3 (element parallel to a rectangle, normal through a corner) and
 //    B-4 (element perpendicular to a rectangle), combined by form-factor algebra for a point
-//    in general position (REFERENCES.md §1 (c1));
+//    in general position (docs/references.md §1 (c1));
 //  - cross-checked against the double-precision point-to-polygon kernel point_to_polygon_ff
 //    (Lambert/Nusselt contour integral, itself tested against Howell in ff_kernel_test).
 // The CIE publication tabulates values for its own geometry (not reproduced here, and its

@@ -1,7 +1,7 @@
 // Closed scenes on the GPU hybrid provider: CIE 171 test 5.8 (inter-reflection in a closed
 // cube, area-averaged indirect illuminance), the integrating sphere and the furnace, and the
 // energy balance (absorbed + unshot + escaped = emitted, escaped ~ 0 when closed).
-// References: REFERENCES.md §2.1 (furnace), §2.2 (energy), §2.3 (average indirect), §2.4
+// References: docs/references.md §2.1 (furnace), §2.2 (energy), §2.3 (average indirect), §2.4
 // (integrating sphere). Tolerance 1 % (the vendors' criterion is 5 %).
 //
 // How the solver's error bound is turned into a guarantee here. The solver reports
@@ -50,7 +50,7 @@ SolverOptions gpu_options(double tolerance) {
     return o;
 }
 
-// Solves, checking the energy bookkeeping after every shot (REFERENCES.md §2.2):
+// Solves, checking the energy bookkeeping after every shot (docs/references.md §2.2):
 // absorbed + escaped + unshot = emitted (an identity of the solver's accounting, to float
 // precision), unshot never grows. Returns the escaped fraction (non-closure of the rows).
 double solve_checked(Solver& s) {
@@ -92,7 +92,7 @@ void row(const char* test, const std::string& what, double ref, double ours,
 
 // Closed 4 m cube, uniform rho (source included), 1 m^2 source of exitance 1000 in the
 // ceiling. Area-averaged indirect irradiance <I> = rho Phi / (S_T (1 - rho)) (CIE 171 eq. 16,
-// REFERENCES.md §2.3), exact for any closed geometry with uniform rho. Ours: indirect =
+// docs/references.md §2.3), exact for any closed geometry with uniform rho. Ours: indirect =
 // total incident minus the direct flux, which in a closed scene is all of Phi:
 // <I> = (sum_i A_i H_i - Phi) / S_T.
 class Cie171Cube : public ::testing::TestWithParam<double> {};
@@ -119,7 +119,7 @@ INSTANTIATE_TEST_SUITE_P(Reflectances, Cie171Cube, ::testing::Values(0.05, 0.3, 
 // --- integrating sphere -----------------------------------------------------------------
 
 // Built-in sphere (R = 1, 16 rings x 32 segments of flat facets, a 30 degree cap emitting
-// exitance 1). On a true sphere H = Phi_e / (A_s - sum_j rho_j A_j) everywhere (REFERENCES.md
+// exitance 1). On a true sphere H = Phi_e / (A_s - sum_j rho_j A_j) everywhere (docs/references.md
 // §2.4); with uniform rho, Phi_e / (A_s (1 - rho)). Tessellation caveat: F_ij = A_j / A_s
 // holds only for patches on the sphere, so point values on flat facets deviate; the
 // area average over all facets is exact for any closed mesh (energy), and the per-group
@@ -157,7 +157,7 @@ INSTANTIATE_TEST_SUITE_P(Reflectances, Sphere, ::testing::Values(0.5));
 // --- furnace ----------------------------------------------------------------------------
 
 // Unit cube, every face emits E = 1 with reflectance rho: B = H = E / (1 - rho) everywhere
-// (REFERENCES.md §2.1). Face averages and points (face centres, near a corner).
+// (docs/references.md §2.1). Face averages and points (face centres, near a corner).
 class Furnace : public ::testing::TestWithParam<double> {};
 
 TEST_P(Furnace, IrradianceIsEOverOneMinusRho) {

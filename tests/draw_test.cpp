@@ -7,8 +7,9 @@
 #include <limits>
 #include <string>
 
+#include "core/colour.h"
+#include "hemirad/draw.h"
 #include "hemirad/image.h"
-#include "output/draw.h"
 
 namespace fs = std::filesystem;
 using namespace hemirad;

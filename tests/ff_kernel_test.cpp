@@ -1,5 +1,5 @@
 // point_to_polygon_ff (differential area -> polygon, Lambert/Nusselt contour integral) against
-// closed forms from REFERENCES.md §1(c1), §1(c2).
+// closed forms from docs/references.md §1(c1), §1(c2).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -68,14 +68,14 @@ INSTANTIATE_TEST_SUITE_P(Catalog, HowellB3,
                                            B3Case{100, 50, 0.1}));
 
 TEST(HowellB3, TabulatedValues) {
-    // REFERENCES.md §1(c1): the sterad_view_factor doc-test value and the catalog table.
+    // docs/references.md §1(c1): the sterad_view_factor doc-test value and the catalog table.
     EXPECT_NEAR(ff({0, 0, 0}, {0, 0, 1}, rect_z(0, 1, 0, 1, 1)), 0.13853160599489298, 1e-14);
     EXPECT_NEAR(ff({0, 0, 0}, {0, 0, 1}, rect_z(0, 2, 0, 1, 1)), 0.167375, 5e-7);
     EXPECT_NEAR(ff({0, 0, 0}, {0, 0, 1}, rect_z(0, 3, 0, 4, 2)), 0.194980, 5e-7);
 }
 
 TEST(HowellB3, ElementUnderCentreOfSquare) {
-    // 4 * B-3(0.5, 0.5, 1) = 0.239456 (REFERENCES.md §1(c1)).
+    // 4 * B-3(0.5, 0.5, 1) = 0.239456 (docs/references.md §1(c1)).
     const double f = ff({0.5, 0.5, 0}, {0, 0, 1}, rect_z(0, 1, 0, 1, 1));
     EXPECT_NEAR(f, 4 * howell_b3(0.5, 0.5, 1), 1e-12);
     EXPECT_NEAR(f, 0.239456, 5e-7);

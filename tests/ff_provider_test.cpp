@@ -1,6 +1,6 @@
 // CPU form-factor providers (reference, pdm, sr) and their BVH against closed forms:
 // C-11 (parallel unit squares at distance 1) and C-14 (perpendicular unit squares sharing an
-// edge), REFERENCES.md §1(a), §1(b); reciprocity; closure of a cube; an occluded case.
+// edge), docs/references.md §1(a), §1(b); reciprocity; closure of a cube; an occluded case.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -228,7 +228,7 @@ TEST(Reference, WholeShooterEqualsSumOverItsLeaves) {
 
 TEST(Reference, Reciprocity) {
     // C-14 with a 1 x 2 wall (l = 1, w = 1, h = 2): A_1 F_12 = A_2 F_21 = 0.232853
-    // (REFERENCES.md §1(b)). The reference integrates only the receiver by the midpoint rule,
+    // (docs/references.md §1(b)). The reference integrates only the receiver by the midpoint rule,
     // so each direction carries its own O(h^2) error; at depth 4 measured 7.9e-4 for F12
     // (receivers: wall cells 1/16 x 1/8 along the shared edge) and 5e-6 for F21.
     const Scene s = make_scene({kFloor, {{0, 0, 0}, {0, 1, 0}, {0, 1, 2}, {0, 0, 2}}});

@@ -2,10 +2,10 @@
 // (luminance-weighted min/avg/max and U0), lux, and refusal of non-planar groups.
 #include <gtest/gtest.h>
 
+#include "hemirad/draw.h"
 #include "hemirad/error.h"
 #include "hemirad/grid.h"
 #include "hemirad/hierarchy.h"
-#include "output/draw.h"
 
 using namespace hemirad;
 

@@ -25,7 +25,7 @@ TEST(HemicubeLayout, DeltaFormFactorsSumToOne) {
 }
 
 // The top face alone: the form factor of a 90-degree square cone, 4 * B-3(1,1,1) seen from
-// a point at distance 1 under a 2x2 square = 0.5541264 (REFERENCES.md §1(c1), element
+// a point at distance 1 under a 2x2 square = 0.5541264 (docs/references.md §1(c1), element
 // under the centre of a square: 4 B-3(a/2, b/2, c)).
 TEST(HemicubeLayout, TopFaceIsTheCentredSquare) {
     const gpu::HemicubeLayout L = gpu::make_hemicube_layout(256);

@@ -11,6 +11,7 @@
 
 #include <unistd.h>
 
+#include "core/colour.h"
 #include "hemirad/error.h"
 #include "hemirad/image.h"
 #include "output/atomic_file.h"

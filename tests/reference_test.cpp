@@ -1,5 +1,5 @@
 // The Monte-Carlo irradiance reference (reference.h) against closed forms only — never against
-// hemirad's own form factors: Howell's point-to-rectangle factors (REFERENCES.md §1(c1)) for
+// hemirad's own form factors: Howell's point-to-rectangle factors (docs/references.md §1(c1)) for
 // direct light, the furnace (§2.1) for every bounce and Russian roulette, exact zeros for
 // occlusion, backs and emitters facing away, and the honesty of the reported standard error.
 //
@@ -250,7 +250,7 @@ void PrintTo(const FurnaceCase& c, std::ostream* os) {
 class ReferenceFurnace : public ::testing::TestWithParam<FurnaceCase> {};
 
 // Closed box, every face Be = pi Ke = 1 and reflectance rho: E = Be / (1 - rho) everywhere
-// (REFERENCES.md §2.1), per channel. Paths end by Russian roulette only, so this checks that
+// (docs/references.md §2.1), per channel. Paths end by Russian roulette only, so this checks that
 // the roulette and the per-channel weights rho/q are unbiased. subdiv 1: 6 emitters, all
 // sampled at every vertex; subdiv 3: 54 emitters, one picked by power, and coplanar
 // neighbours whose shared edges rays must not leak through.
@@ -331,7 +331,7 @@ TEST(ReferenceSem, ZScoresHaveUnitVariance) {
 
 // --- energy balance in a closed box with a different reflectance on every face ----------------
 
-// In a closed enclosure absorbed = emitted, per channel (REFERENCES.md §2.2):
+// In a closed enclosure absorbed = emitted, per channel (docs/references.md §2.2):
 // sum_i A_i (1 - rho_i) H_i = Phi = sum_i A_i Be_i, for any reflectances. Here a unit box,
 // lit by its ceiling (Be = 1, so Phi = 1), with other reflectances per face and per channel:
 // the irradiance is far from uniform and every bounce matters. The left side is an area

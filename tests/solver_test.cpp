@@ -1,5 +1,5 @@
 // The progressive solver on the CPU reference provider: analytic whole-solution cases
-// (REFERENCES.md §2), energy bookkeeping on every shot, and agreement with the matrix solver.
+// (docs/references.md §2), energy bookkeeping on every shot, and agreement with the matrix solver.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/colour.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/render.h"
 #include "hemirad/scene_io.h"
@@ -54,7 +55,7 @@ FloorCheck check_floor(const std::string& file, double x, double z, double heigh
     const ImageRGB B = r.render(solver.solution(), cam, o);
     o.quantity = RenderOptions::Quantity::Irradiance;
     const ImageRGB E = r.render(solver.solution(), cam, o);
-    const auto lin = [](int v) { return 0.9 * srgb_to_linear(v / 255.0); };
+    const auto lin = [](int v) { return 0.9 * srgb_decode(v / 255.0); };
     const dvec3 dark(lin(120), lin(80), lin(50)), light(lin(230), lin(220), lin(200));
     FloorCheck f;
     for (int y = 0; y < o.height; ++y)

@@ -12,6 +12,7 @@
 
 #include <stb_image_write.h>
 
+#include "core/colour.h"
 #include "hemirad/error.h"
 #include "hemirad/export.h"
 #include "hemirad/hierarchy.h"
@@ -58,11 +59,11 @@ void write_text(const fs::path& p, const std::string& text) {
 } // namespace
 
 TEST(Srgb, TransferFunctionAtKnownPoints) {
-    EXPECT_EQ(srgb_to_linear(0.0), 0.0);
-    EXPECT_NEAR(srgb_to_linear(1.0), 1.0, 1e-12);
-    EXPECT_NEAR(srgb_to_linear(0.04045), 0.04045 / 12.92, 1e-12); // the linear segment's end
-    EXPECT_NEAR(srgb_to_linear(0.5), 0.214041, 1e-6);             // ((0.5+0.055)/1.055)^2.4
-    EXPECT_NEAR(srgb_to_linear(188 / 255.0), 0.5029, 1e-4);       // "50 %" grey in 8 bits
+    EXPECT_EQ(srgb_decode(0.0), 0.0);
+    EXPECT_NEAR(srgb_decode(1.0), 1.0, 1e-12);
+    EXPECT_NEAR(srgb_decode(0.04045), 0.04045 / 12.92, 1e-12); // the linear segment's end
+    EXPECT_NEAR(srgb_decode(0.5), 0.214041, 1e-6);             // ((0.5+0.055)/1.055)^2.4
+    EXPECT_NEAR(srgb_decode(188 / 255.0), 0.5029, 1e-4);       // "50 %" grey in 8 bits
 }
 
 TEST(TextureDecode, PngTexelsAreSrgbDecodedInRowOrder) {
@@ -75,11 +76,11 @@ TEST(TextureDecode, PngTexelsAreSrgbDecodedInRowOrder) {
     for (int i = 0; i < 4; ++i)
         for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(t.levels[0].texels[std::size_t(i)][c],
-                        srgb_to_linear(rgb[std::size_t(3 * i + c)] / 255.0), 1e-6)
+                        srgb_decode(rgb[std::size_t(3 * i + c)] / 255.0), 1e-6)
                 << "texel " << i << " channel " << c;
     EXPECT_NEAR(t.max.r, 1.0, 1e-6);
-    EXPECT_NEAR(t.fetch(0, {0.75, 0.25}).g, srgb_to_linear(128 / 255.0), 1e-6); // top right
-    EXPECT_NEAR(t.fetch(0, {1.75, -0.25}).b, srgb_to_linear(30 / 255.0), 1e-6) << "repeat";
+    EXPECT_NEAR(t.fetch(0, {0.75, 0.25}).g, srgb_decode(128 / 255.0), 1e-6); // top right
+    EXPECT_NEAR(t.fetch(0, {1.75, -0.25}).b, srgb_decode(30 / 255.0), 1e-6) << "repeat";
 }
 
 TEST(TextureDecode, JpegOfOneColourDecodesToThatColour) {
@@ -91,9 +92,9 @@ TEST(TextureDecode, JpegOfOneColourDecodesToThatColour) {
     const Texture t = decode_texture("t.jpg", jpg.data(), jpg.size());
     ASSERT_EQ(t.width(), 16);
     const glm::dvec3 mean = t.mean();
-    EXPECT_NEAR(mean.r, srgb_to_linear(200 / 255.0), 0.01);
-    EXPECT_NEAR(mean.g, srgb_to_linear(100 / 255.0), 0.005);
-    EXPECT_NEAR(mean.b, srgb_to_linear(50 / 255.0), 0.003);
+    EXPECT_NEAR(mean.r, srgb_decode(200 / 255.0), 0.01);
+    EXPECT_NEAR(mean.g, srgb_decode(100 / 255.0), 0.005);
+    EXPECT_NEAR(mean.b, srgb_decode(50 / 255.0), 0.003);
 }
 
 TEST(TextureDecode, GarbageAndEmptyAreInputErrorsNamingTheFile) {

@@ -16,6 +16,7 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev   # headless GL: EGL (default), OSMesa
   libglfw3-dev libglm-dev python3-glad                     # viewer window, maths, GL loader
   libopenexr-dev libpng-dev zlib1g-dev libgtest-dev
+  libtinyobjloader-dev                                     # tests: the OBJ reader's oracle
   nlohmann-json3-dev                                       # SCENE.json files
   pybind11-dev python3-dev python3-numpy                   # the Python module (python/)
   dpkg-dev                                                 # cpack -G DEB: dpkg-shlibdeps

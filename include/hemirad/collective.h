@@ -1,14 +1,16 @@
 // What a solver running on several processes (MPI ranks) needs from them: who it is, how many
-// they are, and two collectives. No MPI types here: src/parallel/world.h implements it on MPI,
-// so that the solver and the public headers never include <mpi.h>.
+// they are, and two collectives. No MPI types here: tools/common/parallel/world.h implements it on
+// MPI, so that the solver and the public headers never include <mpi.h>.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "hemirad/visibility.h"
+
 namespace hemirad {
 
-class Collective {
+class HEMIRAD_API Collective {
   public:
     virtual ~Collective() = default;
     virtual int rank() const = 0; ///< 0 .. size()-1

@@ -1,5 +1,5 @@
-// Error channels (STYLE.md §3): InputError for bad input (files, options, scene content),
-// HEMIRAD_CHECK for broken invariants (prints the values and aborts).
+// Error channels (docs/design.md, "Error channels"): InputError for bad input (files, options,
+// scene content), HEMIRAD_CHECK for broken invariants (prints the values and aborts).
 #pragma once
 
 #include <cstdio>
@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -24,7 +26,7 @@ inline std::string num(double x) {
 
 /// Bad input: a file, an option or scene content that the user can fix. The message names
 /// the file, line and value where they are known. Reported once, at the tool's edge.
-class InputError : public std::runtime_error {
+class HEMIRAD_API InputError : public std::runtime_error {
   public:
     explicit InputError(const std::string& message) : std::runtime_error(message) {}
     /// "file:line: message" (line 0 means the whole file).
@@ -34,7 +36,7 @@ class InputError : public std::runtime_error {
 };
 
 /// A failure of the environment (no GL context, a write that failed) rather than of input.
-class RuntimeError : public std::runtime_error {
+class HEMIRAD_API RuntimeError : public std::runtime_error {
   public:
     using std::runtime_error::runtime_error;
 };

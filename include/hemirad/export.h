@@ -43,6 +43,7 @@
 
 #include "hemirad/hierarchy.h"
 #include "hemirad/image.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -52,12 +53,12 @@ struct LeafMesh {
     std::vector<glm::vec3> radiosity; ///< B per vertex, area-weighted over adjacent leaves
     std::vector<std::array<std::uint32_t, 3>> triangles;
 };
-LeafMesh leaf_mesh(const Hierarchy& h);
+HEMIRAD_API LeafMesh leaf_mesh(const Hierarchy& h);
 
 /// The bytes of the PLY file for a leaf mesh.
-std::string ply_bytes(const LeafMesh& mesh);
+HEMIRAD_API std::string ply_bytes(const LeafMesh& mesh);
 /// Writes the PLY of the hierarchy's leaf mesh atomically. Throws RuntimeError naming `path`.
-void export_ply(const std::string& path, const Hierarchy& h);
+HEMIRAD_API void export_ply(const std::string& path, const Hierarchy& h);
 
 inline constexpr int kLightmapPadding = 2; ///< border texels around each chart
 
@@ -78,16 +79,17 @@ struct Lightmap {
 /// files the OBJ refers to (stem.mtl, stem.exr).
 /// With `detail` (discontinuities on), charts of polygons with flagged leaves are refined.
 class DiscontinuityField;
-Lightmap build_lightmap(const Hierarchy& h, std::uint32_t group, const std::string& stem,
-                        const DiscontinuityField* detail = nullptr);
+HEMIRAD_API Lightmap build_lightmap(const Hierarchy& h, std::uint32_t group,
+                                    const std::string& stem,
+                                    const DiscontinuityField* detail = nullptr);
 
 /// The file stem for a group name (unsafe characters replaced by '_'; "group" if empty).
-std::string lightmap_stem(const std::string& group);
+HEMIRAD_API std::string lightmap_stem(const std::string& group);
 
 /// Writes DIR/G.exr, DIR/G.obj and DIR/G.mtl for every surface group that has polygons,
 /// creating DIR if needed. Returns the paths written. Throws RuntimeError naming the path.
 /// `discontinuities`: refine the charts that straddle shadow edges (see the layout above).
-std::vector<std::string> export_lightmaps(const std::string& dir, const Hierarchy& h,
-                                          bool discontinuities = true);
+HEMIRAD_API std::vector<std::string> export_lightmaps(const std::string& dir, const Hierarchy& h,
+                                                      bool discontinuities = true);
 
 } // namespace hemirad

@@ -1,4 +1,4 @@
-// The interface between the solver and whatever computes form factors (DESIGN.md
+// The interface between the solver and whatever computes form factors (docs/design.md,
 // "Data flow"): the solver asks "form factors from this shooter", a provider answers with
 // links. The CPU reference providers and the GPU hemicube provider stand behind it alike.
 #pragma once
@@ -10,6 +10,7 @@
 #include "hemirad/error.h"
 #include "hemirad/patch.h"
 #include "hemirad/scene.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -62,7 +63,7 @@ struct Discretisation {
     std::vector<std::uint8_t> depth; ///< per polygon, 0..kMaxDepth
 };
 
-class FormFactorProvider {
+class HEMIRAD_API FormFactorProvider {
   public:
     virtual ~FormFactorProvider() = default;
     virtual std::string name() const = 0;
@@ -156,13 +157,14 @@ struct CpuProviderOptions {
 /// CPU providers: "reference" (analytic point-to-polygon + ray-cast visibility),
 /// "pdm" (paper 000's parametric differential method), "sr" (paper 000's shooting rays).
 /// Throws InputError for an unknown name.
-std::unique_ptr<FormFactorProvider> make_cpu_provider(const std::string& name, const Scene& scene,
-                                                      const Discretisation& disc,
-                                                      const CpuProviderOptions& options = {});
+HEMIRAD_API std::unique_ptr<FormFactorProvider>
+make_cpu_provider(const std::string& name, const Scene& scene, const Discretisation& disc,
+                  const CpuProviderOptions& options = {});
 
 /// Analytic form factor from a differential area at `p` with unit normal `n` to the
 /// polygon `corners[0..count)` (Lambert/Nusselt contour integral), the polygon first
 /// clipped to the half-space n.(x-p) >= 0. Double precision. Returns a value in [0,1].
-double point_to_polygon_ff(const dvec3& p, const dvec3& n, const dvec3* corners, int count);
+HEMIRAD_API double point_to_polygon_ff(const dvec3& p, const dvec3& n, const dvec3* corners,
+                                       int count);
 
 } // namespace hemirad

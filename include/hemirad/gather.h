@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "hemirad/hierarchy.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -60,7 +61,7 @@ struct GatherOptions {
 };
 
 /// Throws InputError naming the option (--gather-rays, --gather-angle) and the value.
-void validate_gather_options(const GatherOptions& o);
+HEMIRAD_API void validate_gather_options(const GatherOptions& o);
 
 /// A query: a point, the unit normal of the surface element there, and the polygon it lies on
 /// (kNoSurface for a point in free space: a work plane above the floor).
@@ -75,7 +76,7 @@ struct GatherValue {
     dvec3 E() const { return direct + indirect; }
 };
 
-class FinalGather {
+class HEMIRAD_API FinalGather {
   public:
     /// `h` must be push-pulled (Solver::solution()) and outlive this object.
     FinalGather(const Hierarchy& h, const GatherOptions& options = {});

@@ -23,6 +23,7 @@
 #include "hemirad/image.h"
 #include "hemirad/json.h"
 #include "hemirad/photometry.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -36,7 +37,7 @@ struct GridSpec {
 
 /// Parses "GROUP:NXxNY" (also "GROUP:NX×NY"; the group name may contain ':', the last one
 /// separates; NX, NY in 1..10000, NX*NY <= kMaxGridPoints). Throws InputError quoting the text.
-GridSpec parse_grid_spec(const std::string& text);
+HEMIRAD_API GridSpec parse_grid_spec(const std::string& text);
 
 struct GridPoint {
     int i = 0, j = 0;          ///< cell along u, v
@@ -62,23 +63,23 @@ struct GridResult {
 /// The polygons of the grid's surface group, after checking that the group exists (else
 /// InputError listing the groups) and is planar (else InputError). Call it before solving so
 /// that a bad --grid is refused before any output is written.
-std::vector<std::uint32_t> grid_polygons(const Scene& scene, const GridSpec& spec);
+HEMIRAD_API std::vector<std::uint32_t> grid_polygons(const Scene& scene, const GridSpec& spec);
 
 /// Evaluates the grid on a push-pulled hierarchy (Solver::solution()): by final gather at each
 /// point when `gather` is given (gather.h), else interpolated between the leaves. Throws
 /// InputError for an unknown group (listing the groups) or a group whose polygons are not
 /// coplanar.
-GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec,
-                         const FinalGather* gather = nullptr);
+HEMIRAD_API GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec,
+                                     const FinalGather* gather = nullptr);
 
 /// The report entry: {group, nx, ny, points, skipped, E_min, E_avg, E_max (luminance,
 /// W unit^-2), U0 = Emin/Eavg, "Emin/Emax", E_rgb {min, avg, max}, and with lux:
 /// lux {min, avg, max}}.
-Json grid_json(const GridResult& g, bool lux);
+HEMIRAD_API Json grid_json(const GridResult& g, bool lux);
 
 /// One line for people: "floor 9x9: Emin 96.2 lx, Eavg 161.9 lx, Emax 243 lx, U0 = Emin/Eavg
 /// 0.594, Emin/Emax 0.396" (in W/unit² without lux).
-std::string grid_summary(const GridResult& g, bool lux);
+HEMIRAD_API std::string grid_summary(const GridResult& g, bool lux);
 
 /// A false-colour plan view of a grid (`hemirad solve --grid-png DIR`): one cell per point, to
 /// scale, seen from the front of the surface (u to the right, v up), coloured by its value
@@ -86,9 +87,10 @@ std::string grid_summary(const GridResult& g, bool lux);
 /// enough; points on no polygon grey; the positions of the luminaires in front of the plane
 /// within the grid marked with a cross and their name; a title with Emin, Eavg, Emax, U0 and
 /// Emin/Emax and a colour legend. Values in lux with `lux`, else W/unit².
-Image8 grid_plan_image(const GridResult& g, bool lux, const std::vector<Luminaire>& luminaires);
+HEMIRAD_API Image8 grid_plan_image(const GridResult& g, bool lux,
+                                   const std::vector<Luminaire>& luminaires);
 
 /// CSV of all grids: group,i,j,x,y,z,E_r,E_g,E_b,E_Y[,lux]; a skipped point has empty values.
-std::string grids_csv(const std::vector<GridResult>& grids, bool lux);
+HEMIRAD_API std::string grids_csv(const std::vector<GridResult>& grids, bool lux);
 
 } // namespace hemirad

@@ -17,6 +17,7 @@
 //   texture.h               textures (PNG, JPEG: map_Kd, glTF baseColorTexture) as reflectance
 //   photometry.h            luminaires: IES files, point sources, spots
 //   solver.h                SolverOptions, Solver (the loop), ShotRecord (the shot log)
+//   solver_options.h        the options table: every option's name, default, range, help
 //   collective.h            what a solve across MPI ranks needs (rank, size, all-gather)
 //   provider.h              form-factor methods (hybrid, analytic, hemicube; reference, pdm, sr)
 //   hierarchy.h, patch.h    the patch quadtrees that hold the solution
@@ -24,6 +25,7 @@
 //   report.h                probes, the JSON report, probe CSVs
 //   grid.h                  calculation grids (average, minimum, uniformity; lux)
 //   render.h, image.h       images of the solution (GL), EXR/PNG, tone mapping
+//   draw.h                  text, shapes, false colour, contact sheets and plots on images
 //   export.h                PLY meshes and lightmap atlases
 //   solution_file.h         saving and resuming a solve
 //   reference.h             the Monte-Carlo reference (path tracer) at points
@@ -34,6 +36,7 @@
 #pragma once
 
 #include "hemirad/collective.h"
+#include "hemirad/draw.h"
 #include "hemirad/error.h"
 #include "hemirad/export.h"
 #include "hemirad/form_factors.h"
@@ -55,6 +58,7 @@
 #include "hemirad/scene_io.h"
 #include "hemirad/solution_file.h"
 #include "hemirad/solver.h"
+#include "hemirad/solver_options.h"
 #include "hemirad/texture.h"
 #include "hemirad/validation_scenes.h"
 #include "hemirad/version.h"

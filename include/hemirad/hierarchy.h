@@ -13,6 +13,7 @@
 #include "hemirad/form_factors.h"
 #include "hemirad/patch.h"
 #include "hemirad/scene.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -25,9 +26,9 @@ struct HierarchyOptions {
 
 /// Depth of each polygon's quadtree for these options. Deterministic; shared by the solver
 /// and the form-factor providers.
-Discretisation discretise(const Scene& scene, const HierarchyOptions& options);
+HEMIRAD_API Discretisation discretise(const Scene& scene, const HierarchyOptions& options);
 
-class Hierarchy {
+class HEMIRAD_API Hierarchy {
   public:
     /// Per-node state, 40 bytes: float is enough for one shot's contribution, and totals that
     /// must be exact (energy balance) are kept in double by the solver.

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "hemirad/visibility.h"
+
 namespace hemirad {
 
 /// Linear RGB, 3 floats per pixel, row-major, row 0 at the top. Values are in whatever unit the
@@ -77,19 +79,19 @@ struct Image8 {
 /// half = true stores 16-bit floats (about 3 significant digits; finite values beyond +-65504
 /// are clamped to +-65504 rather than becoming infinite); false stores 32-bit floats.
 /// Atomic; throws RuntimeError naming the path.
-void write_exr(const std::string& path, const ImageRGB& image, bool half = true);
+HEMIRAD_API void write_exr(const std::string& path, const ImageRGB& image, bool half = true);
 
 /// Reads the R, G, B channels of an OpenEXR file (any pixel type, as float). A missing channel
 /// reads as 0; a luminance-only file (Y) is read as grey. Throws RuntimeError naming the path.
-ImageRGB read_exr(const std::string& path);
+HEMIRAD_API ImageRGB read_exr(const std::string& path);
 
 /// Writes an 8-bit RGB PNG tagged sRGB (sRGB + gAMA chunks, no time or text chunks: the bytes
 /// depend only on the pixels). Atomic; throws RuntimeError naming the path.
-void write_png(const std::string& path, const Image8& image);
+HEMIRAD_API void write_png(const std::string& path, const Image8& image);
 
 /// Reads a PNG as 8-bit RGB (grey, palette and 16-bit files are converted; alpha is dropped).
 /// Throws RuntimeError naming the path.
-Image8 read_png(const std::string& path);
+HEMIRAD_API Image8 read_png(const std::string& path);
 
 // --- tone mapping ----------------------------------------------------------------------------
 
@@ -97,12 +99,6 @@ Image8 read_png(const std::string& path);
 inline double luminance(double r, double g, double b) {
     return 0.2126 * r + 0.7152 * g + 0.0722 * b;
 }
-
-/// The sRGB transfer function (IEC 61966-2-1 OETF), exact: 12.92 v below 0.0031308, else
-/// 1.055 v^(1/2.4) - 0.055. Input is clamped to [0, 1].
-double srgb_encode(double linear);
-/// Its inverse (sRGB-encoded [0, 1] -> linear [0, 1]).
-double srgb_decode(double encoded);
 
 /// Linear float image -> 8-bit sRGB, in this order, per pixel:
 ///   1. scale by k = (auto_exposure ? auto_exposure_scale(image) : 1) * 2^exposure;
@@ -133,9 +129,9 @@ inline constexpr double kAutoExposurePercentile = 0.95;
 /// Scale k such that the kAutoExposurePercentile (95th) percentile of luminance, over pixels of
 /// finite positive luminance, maps to 1. Robust to a light source in view as long as it covers
 /// less than 5% of the lit pixels. Returns 1 for an image with no such pixel.
-double auto_exposure_scale(const ImageRGB& image);
+HEMIRAD_API double auto_exposure_scale(const ImageRGB& image);
 
 /// Tone maps a linear image to 8-bit sRGB (see ToneMap for the steps).
-Image8 tone_map(const ImageRGB& image, const ToneMap& options = {});
+HEMIRAD_API Image8 tone_map(const ImageRGB& image, const ToneMap& options = {});
 
 } // namespace hemirad

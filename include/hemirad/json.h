@@ -1,6 +1,7 @@
 // A small JSON writer for reports and logs: values are built as a tree and serialised with
-// keys in insertion order and doubles in round-trip precision. Non-finite numbers are a
-// broken invariant (reports never hold NaN), checked on write.
+// keys in insertion order, whole numbers as integers and other doubles in their shortest
+// round-trip form (std::to_chars). Non-finite numbers are a broken invariant (reports never
+// hold NaN), checked on write.
 #pragma once
 
 #include <cstdint>
@@ -13,9 +14,11 @@
 
 #include <glm/glm.hpp>
 
+#include "hemirad/visibility.h"
+
 namespace hemirad {
 
-class Json {
+class HEMIRAD_API Json {
   public:
     Json() : v_(nullptr) {}
     Json(std::nullptr_t) : v_(nullptr) {}

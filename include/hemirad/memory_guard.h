@@ -18,6 +18,7 @@
 
 #include "hemirad/form_factors.h"
 #include "hemirad/scene.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -32,26 +33,27 @@ struct MemoryEstimate {
     std::uint64_t total() const { return hierarchy + provider + gl; }
 };
 
-MemoryEstimate estimate_memory(const Scene& scene, const Discretisation& disc,
-                               const SolverOptions& options);
+HEMIRAD_API MemoryEstimate estimate_memory(const Scene& scene, const Discretisation& disc,
+                                           const SolverOptions& options);
 
 /// Memory this process may still use [bytes]: /proc/meminfo MemAvailable, or the cgroup's
 /// memory.max minus memory.current where that is lower (cgroup v2, then v1). `source` says
 /// which ("MemAvailable", "cgroup limit"). 0 if neither can be read.
-std::uint64_t available_memory(std::string* source = nullptr);
+HEMIRAD_API std::uint64_t available_memory(std::string* source = nullptr);
 
 /// Throws InputError if the estimate for `disc` exceeds options.memory_limit (0 =
 /// available_memory()), naming the estimate and its parts, the limit and where it came from,
 /// and the options to change: --max-depth (with the largest that would fit), --patch-size,
 /// --max-resolution, --memory-limit.
-void check_memory(const Scene& scene, const Discretisation& disc, const SolverOptions& options);
+HEMIRAD_API void check_memory(const Scene& scene, const Discretisation& disc,
+                              const SolverOptions& options);
 
 /// Parses a size for --memory-limit: bytes, or a number with K, M, G, T (powers of 1024; an
 /// optional trailing B or iB), e.g. "512M", "1.5G". 0 means automatic. Throws InputError
 /// naming `option` and the text.
-std::uint64_t parse_memory_size(const std::string& text, const std::string& option);
+HEMIRAD_API std::uint64_t parse_memory_size(const std::string& text, const std::string& option);
 
 /// "1.5 GiB", "312 MiB", "12 KiB", "100 bytes".
-std::string bytes_text(std::uint64_t bytes);
+HEMIRAD_API std::string bytes_text(std::uint64_t bytes);
 
 } // namespace hemirad

@@ -15,6 +15,7 @@
 #include <cstdint>
 
 #include "hemirad/scene.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -47,26 +48,28 @@ struct PatchGeometry {
 };
 
 /// Parametric coordinates of a patch's corners and centre (see header comment).
-PatchGeometry patch_geometry(const Polygon& polygon, std::uint32_t level, std::uint32_t index);
+HEMIRAD_API PatchGeometry patch_geometry(const Polygon& polygon, std::uint32_t level,
+                                         std::uint32_t index);
 
 /// Maps parameter (u,v) to a point on the polygon (bilinear for quads, affine for triangles).
-dvec3 polygon_point(const Polygon& polygon, double u, double v);
+HEMIRAD_API dvec3 polygon_point(const Polygon& polygon, double u, double v);
 
 /// Index of the patch of `level` that contains parameter point (u,v) (clamped into range).
-std::uint32_t patch_at(const Polygon& polygon, std::uint32_t level, double u, double v);
+HEMIRAD_API std::uint32_t patch_at(const Polygon& polygon, std::uint32_t level, double u, double v);
 
 /// Children of a patch at level+1 (always four), and its parent at level-1.
-std::array<std::uint32_t, 4> patch_children(bool triangle, std::uint32_t level,
-                                            std::uint32_t index);
-std::uint32_t patch_parent(bool triangle, std::uint32_t level, std::uint32_t index);
+HEMIRAD_API std::array<std::uint32_t, 4> patch_children(bool triangle, std::uint32_t level,
+                                                        std::uint32_t index);
+HEMIRAD_API std::uint32_t patch_parent(bool triangle, std::uint32_t level, std::uint32_t index);
 
 /// Patches of the same level sharing an edge with this one (up to 4; unused = UINT32_MAX).
-std::array<std::uint32_t, 4> patch_neighbours(bool triangle, std::uint32_t level,
-                                              std::uint32_t index);
+HEMIRAD_API std::array<std::uint32_t, 4> patch_neighbours(bool triangle, std::uint32_t level,
+                                                          std::uint32_t index);
 
 /// Texture coordinates of parameter point (u, v) of polygon `polygon` (the same bilinear or
 /// affine map as polygon_point()); the scene must have texcoords.
-glm::dvec2 polygon_texcoord(const Scene& scene, std::uint32_t polygon, double u, double v);
+HEMIRAD_API glm::dvec2 polygon_texcoord(const Scene& scene, std::uint32_t polygon, double u,
+                                        double v);
 
 /// The reflectance of a patch, per channel: its material's rho, times, for a textured polygon,
 /// the texture's mean over the patch (patch_reflectance.cpp): the patch is split into 8 x 8
@@ -74,10 +77,10 @@ glm::dvec2 polygon_texcoord(const Scene& scene, std::uint32_t polygon, double u,
 /// sampled at its centre from the mip level whose texels are about 1/8 of the patch's footprint
 /// wide (the footprint's side: the square root of its area in level-0 texels), so a leaf
 /// averages the box-filtered texture over its own footprint.
-dvec3 patch_reflectance(const Scene& scene, std::uint32_t polygon, std::uint32_t level,
-                        std::uint32_t index);
+HEMIRAD_API dvec3 patch_reflectance(const Scene& scene, std::uint32_t polygon, std::uint32_t level,
+                                    std::uint32_t index);
 /// The reflectance at parameter point (u, v): rho times the level-0 texel there.
-dvec3 reflectance_at(const Scene& scene, std::uint32_t polygon, double u, double v);
+HEMIRAD_API dvec3 reflectance_at(const Scene& scene, std::uint32_t polygon, double u, double v);
 
 /// Is `index` a valid patch of `level` (for triangles, every cell index is valid).
 inline bool patch_valid(std::uint32_t level, std::uint32_t index) {

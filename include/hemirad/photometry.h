@@ -25,6 +25,8 @@
 
 #include <glm/glm.hpp>
 
+#include "hemirad/visibility.h"
+
 namespace hemirad {
 
 /// Luminous efficacy that converts radiometric watts to lumens here [lm/W]: 1 cd = 1/683 W/sr.
@@ -39,10 +41,10 @@ enum class HorizontalSymmetry {
     Bilateral90, ///< C in 90..270: symmetric about the 90-270 plane (LM-63-1995)
     None,        ///< C in 0..360: no symmetry
 };
-const char* to_string(HorizontalSymmetry s);
+HEMIRAD_API const char* to_string(HorizontalSymmetry s);
 
 /// A type C luminous intensity distribution I(gamma, C) [cd] tabulated on a grid of angles.
-struct CandelaDistribution {
+struct HEMIRAD_API CandelaDistribution {
     std::vector<double> gamma;   ///< vertical angles [deg], strictly increasing, in [0, 180]
     std::vector<double> c;       ///< horizontal angles [deg], strictly increasing (symmetry)
     std::vector<double> candela; ///< [cd], one row per C plane: candela[i * gamma.size() + j]
@@ -60,14 +62,15 @@ struct CandelaDistribution {
 };
 
 /// The same intensity `candela` in every direction (lumens = 4 pi candela).
-CandelaDistribution isotropic_distribution(double candela);
+HEMIRAD_API CandelaDistribution isotropic_distribution(double candela);
 /// A spot: `candela` within `cone` degrees of the nadir, falling linearly in gamma to 0 at
 /// cone + falloff degrees, 0 beyond. Requires cone in (0, 180], falloff >= 0, cone + falloff
 /// <= 180 (InputError otherwise).
-CandelaDistribution spot_distribution(double candela, double cone_deg, double falloff_deg);
+HEMIRAD_API CandelaDistribution spot_distribution(double candela, double cone_deg,
+                                                  double falloff_deg);
 
 /// An IES LM-63 photometric file (1986, 1991, 1995, 2002), type C, TILT=NONE.
-struct IesFile {
+struct HEMIRAD_API IesFile {
     std::string path;
     std::string format; ///< "LM-63-2002", "LM-63-1995", "LM-63-1991" or "LM-63-1986"
     std::vector<std::pair<std::string, std::string>> keywords; ///< [KEYWORD] value lines
@@ -94,12 +97,12 @@ struct IesFile {
 /// file, the line and the value for: TILT other than NONE, photometric types A and B, counts,
 /// angles or factors out of range, angles not increasing, a horizontal range that is none of
 /// the symmetries, a missing or non-numeric value, values left over after the table.
-IesFile parse_ies(const std::string& text, const std::string& path);
+HEMIRAD_API IesFile parse_ies(const std::string& text, const std::string& path);
 /// Reads and parses an IES file. Throws InputError (also for a missing file).
-IesFile read_ies(const std::string& path);
+HEMIRAD_API IesFile read_ies(const std::string& path);
 
 /// A point-source luminaire placed in a scene (SCENE.json "luminaires", scene_json.h).
-struct Luminaire {
+struct HEMIRAD_API Luminaire {
     std::string name;               ///< for reports ("L1", or the "name" given)
     std::string kind;               ///< "ies", "candela" or "spot"
     std::string file;               ///< the IES file as given (kind "ies"), else ""

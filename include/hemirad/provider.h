@@ -8,6 +8,7 @@
 
 #include "hemirad/form_factors.h"
 #include "hemirad/scene.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -33,14 +34,15 @@ struct ProviderOptions {
 };
 
 /// "reference", "pdm", "sr", "hemicube", "analytic", "hybrid". Unknown → InputError.
-std::unique_ptr<FormFactorProvider> make_provider(const std::string& name, const Scene& scene,
-                                                  const Discretisation& disc,
-                                                  const ProviderOptions& options);
-const char* provider_names();
+HEMIRAD_API std::unique_ptr<FormFactorProvider> make_provider(const std::string& name,
+                                                              const Scene& scene,
+                                                              const Discretisation& disc,
+                                                              const ProviderOptions& options);
+HEMIRAD_API const char* provider_names();
 /// Checks the GPU options a user can get wrong (resolutions, LOD bias): InputError naming the
 /// option. validate_options() calls it for the GPU providers, before the memory guard.
-void validate_gpu_options(const GpuProviderOptions& options);
-bool is_gpu_provider(const std::string& name);
+HEMIRAD_API void validate_gpu_options(const GpuProviderOptions& options);
+HEMIRAD_API bool is_gpu_provider(const std::string& name);
 
 } // namespace hemirad
 
@@ -55,7 +57,7 @@ struct GroupFormFactors {
     double seconds = 0;
     long shots = 0;
 };
-GroupFormFactors group_form_factors(const Scene& scene, const Discretisation& disc,
-                                    FormFactorProvider& provider, std::uint32_t group);
+HEMIRAD_API GroupFormFactors group_form_factors(const Scene& scene, const Discretisation& disc,
+                                                FormFactorProvider& provider, std::uint32_t group);
 
 } // namespace hemirad

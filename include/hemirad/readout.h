@@ -6,6 +6,7 @@
 
 #include "hemirad/hierarchy.h"
 #include "hemirad/scene.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -17,18 +18,19 @@ struct SurfacePoint {
 
 /// Parameters (u,v) of a point in the polygon's plane (inverse of polygon_point). Returns
 /// false if the point lies outside the polygon by more than `slack` in parameter space.
-bool polygon_uv(const Polygon& polygon, const dvec3& p, double& u, double& v, double slack = 1e-6);
+HEMIRAD_API bool polygon_uv(const Polygon& polygon, const dvec3& p, double& u, double& v,
+                            double slack = 1e-6);
 
 /// The nearest polygon facing the direction `normal` (normals within 60 degrees), with the
 /// point's projection inside it, at most `max_distance` from its plane (0 = 1e-3 of the
 /// scene diagonal). Nothing if no surface is there.
-std::optional<SurfacePoint> find_surface(const Scene& scene, const dvec3& point,
-                                         const dvec3& normal, double max_distance = 0);
+HEMIRAD_API std::optional<SurfacePoint> find_surface(const Scene& scene, const dvec3& point,
+                                                     const dvec3& normal, double max_distance = 0);
 
 /// Irradiance [W unit^-2] at a surface point, interpolated bilinearly between the centres of
 /// the leaf patches around it (quads; triangles take the leaf that holds the point). The
 /// hierarchy should be push-pulled (Solver::solution()).
-dvec3 irradiance_at(const Hierarchy& h, const SurfacePoint& sp);
+HEMIRAD_API dvec3 irradiance_at(const Hierarchy& h, const SurfacePoint& sp);
 
 /// The same interpolation of any per-leaf field: `leaf(index)` gives the value of the leaf
 /// patch `index` of sp.polygon at its leaf level.
@@ -54,6 +56,6 @@ struct GroupIrradiance {
     double area = 0;
     dvec3 E_avg{0.0}, E_min{0.0}, E_max{0.0};
 };
-GroupIrradiance group_irradiance(const Hierarchy& h, std::uint32_t group);
+HEMIRAD_API GroupIrradiance group_irradiance(const Hierarchy& h, std::uint32_t group);
 
 } // namespace hemirad

@@ -24,6 +24,7 @@
 
 #include "hemirad/report.h"
 #include "hemirad/scene.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -40,7 +41,7 @@ struct ReferenceOptions {
 
 /// Throws InputError naming the command-line option (--samples, --threads, --max-bounces)
 /// and the value when an option is out of range.
-void validate_options(const ReferenceOptions& options);
+HEMIRAD_API void validate_options(const ReferenceOptions& options);
 
 struct ReferenceValue {
     dvec3 E{0.0}; ///< irradiance, mean over the samples, per channel [W unit^-2]
@@ -64,20 +65,19 @@ using ReferenceProgress = std::function<void(std::size_t done, std::size_t total
 /// point depends only on (seed, its index, samples, max_bounces), not on the thread count.
 /// Validates the options first (validate_options). Probes' normals need not be unit length;
 /// a probe with a zero or non-finite normal or position throws InputError naming its index.
-std::vector<ReferenceValue> reference_irradiance(const Scene& scene,
-                                                 const std::vector<Probe>& probes,
-                                                 const ReferenceOptions& options,
-                                                 const ReferenceProgress& progress = {});
+HEMIRAD_API std::vector<ReferenceValue>
+reference_irradiance(const Scene& scene, const std::vector<Probe>& probes,
+                     const ReferenceOptions& options, const ReferenceProgress& progress = {});
 
 /// CSV with the columns of `hemirad solve --probe-out` (report.h probes_csv) and three more:
 /// x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group,sem_r,sem_g,sem_b. A probe on no surface has its
 /// free-space E and sem, an empty polygon column and "none" as its group.
-std::string reference_csv(const Scene& scene, const std::vector<Probe>& probes,
-                          const std::vector<ReferenceValue>& values);
+HEMIRAD_API std::string reference_csv(const Scene& scene, const std::vector<Probe>& probes,
+                                      const std::vector<ReferenceValue>& values);
 
 /// Median over the points of the largest relative standard error of a channel,
 /// max_c sem_c / E_c over channels with E_c > 0 (points with no such channel, or with NaN
 /// sem, are left out). 0 when no point counts.
-double median_relative_sem(const std::vector<ReferenceValue>& values);
+HEMIRAD_API double median_relative_sem(const std::vector<ReferenceValue>& values);
 
 } // namespace hemirad

@@ -16,6 +16,7 @@
 #include "hemirad/hierarchy.h"
 #include "hemirad/image.h"
 #include "hemirad/scene.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -67,23 +68,24 @@ struct DiscontinuityStats {
     std::size_t pixels = 0; ///< pixels re-evaluated
     double seconds = 0;
 };
-DiscontinuityStats resolve_discontinuities(ImageRGB& image, const Hierarchy& h,
-                                           const Camera& camera, const RenderOptions& options);
+HEMIRAD_API DiscontinuityStats resolve_discontinuities(ImageRGB& image, const Hierarchy& h,
+                                                       const Camera& camera,
+                                                       const RenderOptions& options);
 
 /// Parses "ex,ey,ez,tx,ty,tz,ux,uy,uz,fov" (fov: vertical, degrees, in (0, 180)). Throws
 /// InputError naming the bad value (wrong count, not a number, eye == target, up parallel to
 /// the view direction, fov out of range).
-Camera parse_camera(const std::string& text);
+HEMIRAD_API Camera parse_camera(const std::string& text);
 
 /// The scene's default view: scene.cameras[0], or, if it has none, frame_scene(scene).
-Camera default_camera(const Scene& scene);
+HEMIRAD_API Camera default_camera(const Scene& scene);
 
 /// A view that shows the scene's lit surfaces, for a scene without a camera (default_view.cpp):
 /// the bounding box framed from outside, from the side that shows most lit front faces with
 /// nothing in front of them (the open side of a box), or, where every side shows only the
 /// backs of walls (a closed room), a view from inside across the room. Named "default".
 /// Casts 32 x 32 rays from each of 10 candidate cameras (a BVH of the scene is built).
-Camera frame_scene(const Scene& scene);
+HEMIRAD_API Camera frame_scene(const Scene& scene);
 
 /// GL resources for drawing one scene's solution; needs a current GL 4.5 context (create a
 /// gl::Context first, or run inside the viewer's window). The scene must outlive it.
@@ -93,7 +95,7 @@ Camera frame_scene(const Scene& scene);
 /// hierarchy's discretisation changes; each call then computes and uploads the colours only
 /// (one float RGB per welded vertex, or per leaf in flat mode), so the viewer may call draw()
 /// every frame.
-class SolutionRenderer {
+class HEMIRAD_API SolutionRenderer {
   public:
     explicit SolutionRenderer(const Scene& scene);
     ~SolutionRenderer();
@@ -124,7 +126,7 @@ class SolutionRenderer {
     Stats stats() const;
 
   private:
-    struct Impl;
+    struct HEMIRAD_LOCAL Impl;
     std::unique_ptr<Impl> impl_;
 };
 

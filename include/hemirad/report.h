@@ -9,6 +9,7 @@
 #include "hemirad/grid.h"
 #include "hemirad/json.h"
 #include "hemirad/solver.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -17,18 +18,18 @@ namespace hemirad {
 /// with name, area, E_avg, E_min, E_max — incident irradiance, RGB — and flux (E times area,
 /// RGB, W) and lumens (683 x its luminance: the lumens reaching the group); with luminaires,
 /// installed_lumens and the luminaire schedule, luminaires[...] (luminaire_json)).
-Json solve_report(Solver& solver);
+HEMIRAD_API Json solve_report(Solver& solver);
 /// The same with calculation grids (grid.h): adds `grids: [grid_json(...)]`, and with `lux`
 /// photometric values (lux, for scenes in metres; weighting in grid.h).
-Json solve_report(Solver& solver, const std::vector<GridResult>& grids, bool lux);
+HEMIRAD_API Json solve_report(Solver& solver, const std::vector<GridResult>& grids, bool lux);
 
 /// A luminaire's schedule entry: name, kind (ies, candela, spot), file (ies), position, aim,
 /// rotation [deg], multiplier, lumens (integrated from the distribution, multiplier applied),
 /// rated_lumens (the IES file's lamp lumens times multiplier; absent for absolute photometry and
 /// other kinds), max_candela, symmetry.
-Json luminaire_json(const Luminaire& l);
+HEMIRAD_API Json luminaire_json(const Luminaire& l);
 /// {installed_lumens, luminaires: [luminaire_json...]} of a scene (both present, possibly 0/[]).
-Json luminaire_schedule(const Scene& scene);
+HEMIRAD_API Json luminaire_schedule(const Scene& scene);
 
 struct Probe {
     dvec3 position{0.0}, normal{0.0};
@@ -38,14 +39,14 @@ struct Probe {
 /// jittered stratification of its parameter square (a triangle folds the square's upper half),
 /// kept 1e-3 of the parameter range away from the edges; the normal is the polygon's.
 /// Deterministic for a given scene, count and seed.
-std::vector<Probe> surface_points(const Scene& scene, std::size_t count, std::uint64_t seed = 1,
-                                  int min_per_polygon = 2);
+HEMIRAD_API std::vector<Probe> surface_points(const Scene& scene, std::size_t count,
+                                              std::uint64_t seed = 1, int min_per_polygon = 2);
 /// CSV rows x,y,z,nx,ny,nz with a header (the input of --probes).
-std::string probe_points_csv(const std::vector<Probe>& probes);
+HEMIRAD_API std::string probe_points_csv(const std::vector<Probe>& probes);
 
 /// Reads CSV rows x,y,z,nx,ny,nz (a header line is optional; '#' comments allowed). Throws
 /// InputError naming the file and line of a malformed row.
-std::vector<Probe> read_probes(const std::string& path);
+HEMIRAD_API std::vector<Probe> read_probes(const std::string& path);
 /// Irradiance at one probe: E [W unit^-2], RGB, and the polygon the point lies on.
 struct ProbeValue {
     std::optional<dvec3> E;               ///< empty: on no surface, and no gather
@@ -54,16 +55,17 @@ struct ProbeValue {
 /// The values of probes_csv(): without a gather E is interpolated between the leaves around
 /// the point (nothing for a point on no surface); with a final gather (gather.h), point k is
 /// gathered at the point itself with random stream k (deterministic for given options).
-std::vector<ProbeValue> evaluate_probes(const std::vector<Probe>& probes, const Hierarchy& h,
-                                        const FinalGather* gather = nullptr);
+HEMIRAD_API std::vector<ProbeValue> evaluate_probes(const std::vector<Probe>& probes,
+                                                    const Hierarchy& h,
+                                                    const FinalGather* gather = nullptr);
 /// CSV x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group. Without a gather E is interpolated between
 /// the leaves around the point and a point on no surface gets empty E columns; with a final
 /// gather (gather.h) E is evaluated at the point itself, also in free space (polygon empty).
 /// Either way a point on no surface has "none" as its group.
-std::string probes_csv(const std::vector<Probe>& probes, const Hierarchy& h,
-                       const FinalGather* gather = nullptr);
+HEMIRAD_API std::string probes_csv(const std::vector<Probe>& probes, const Hierarchy& h,
+                                   const FinalGather* gather = nullptr);
 
 /// Writes a whole file atomically (temporary file, then rename): never a partial file.
-void write_text_file(const std::string& path, const std::string& contents);
+HEMIRAD_API void write_text_file(const std::string& path, const std::string& contents);
 
 } // namespace hemirad

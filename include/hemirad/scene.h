@@ -1,5 +1,5 @@
 // Scene model: planar convex polygons (triangles and quads) with diffuse materials.
-// Conventions (DESIGN.md "Conventions for results"): lengths in scene units; Ke is emitted
+// Conventions (docs/design.md, "Conventions for results"): lengths in scene units; Ke is emitted
 // radiance per channel, emitted radiosity (exitance) is pi*Ke; Kd is reflectance rho in [0,1).
 #pragma once
 
@@ -13,12 +13,13 @@
 
 #include "hemirad/photometry.h"
 #include "hemirad/texture.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
 using dvec3 = glm::dvec3;
 
-struct Material {
+struct HEMIRAD_API Material {
     std::string name;
     dvec3 rho{0.0}; ///< diffuse reflectance per RGB channel, each in [0, 1)
     dvec3 Ke{0.0};  ///< emitted radiance per channel [W sr^-1 unit^-2]; exitance = pi*Ke
@@ -30,7 +31,7 @@ struct Material {
 };
 
 /// A planar convex polygon: 3 or 4 corners, counter-clockwise seen from the front (normal side).
-struct Polygon {
+struct HEMIRAD_API Polygon {
     std::array<dvec3, 4> v{};   ///< corners; v[3] unused for triangles
     int count = 0;              ///< 3 or 4
     dvec3 normal{0.0};          ///< unit normal, front side
@@ -62,7 +63,7 @@ struct Bounds {
     double diagonal() const { return glm::length(hi - lo); }
 };
 
-struct Scene {
+struct HEMIRAD_API Scene {
     std::string source; ///< file path or "builtin:NAME"
     std::vector<Polygon> polygons;
     std::vector<Material> materials;
@@ -109,22 +110,23 @@ struct AddResult {
     bool split = false; ///< a quad was split into triangles
     bool degenerate = false;
 };
-AddResult add_polygon(Scene& scene, const std::vector<dvec3>& corners, std::uint32_t material,
-                      std::uint32_t group, double planarity_tolerance = 1e-6,
-                      const std::vector<glm::dvec2>* uv = nullptr);
+HEMIRAD_API AddResult add_polygon(Scene& scene, const std::vector<dvec3>& corners,
+                                  std::uint32_t material, std::uint32_t group,
+                                  double planarity_tolerance = 1e-6,
+                                  const std::vector<glm::dvec2>* uv = nullptr);
 
 /// For faces of a textured material that carry no texture coordinates: the index of a copy of
 /// `material` with its reflectance times the texture's mean and no texture (named "NAME
 /// (texture mean)"), appended to scene.materials the first time; `cache` remembers the copies
 /// made (textured material -> its copy).
-std::uint32_t untextured_material(Scene& scene, std::uint32_t material,
-                                  std::map<std::uint32_t, std::uint32_t>& cache);
+HEMIRAD_API std::uint32_t untextured_material(Scene& scene, std::uint32_t material,
+                                              std::map<std::uint32_t, std::uint32_t>& cache);
 
 /// The warning finish_scene() adds when nothing emits (its start, for filtering).
 inline constexpr const char* kNoEmitterWarning = "no surface emits light";
 
 /// Checks a finished scene: at least one polygon (else InputError naming `origin`); adds a
 /// warning when nothing emits. Called by every loader. Adds no camera.
-void finish_scene(Scene& scene, const std::string& origin);
+HEMIRAD_API void finish_scene(Scene& scene, const std::string& origin);
 
 } // namespace hemirad

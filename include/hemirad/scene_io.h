@@ -4,6 +4,7 @@
 #include <string>
 
 #include "hemirad/scene.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -24,8 +25,8 @@ struct ObjOptions {
 /// Loads "NAME" (a built-in scene), a path to an OBJ file, a glTF 2.0 file (a path ending in
 /// .gltf or .glb: load_gltf) or a SCENE.json project file (a path ending in .json:
 /// load_scene_json). The one place that dispatches by extension. Throws InputError on bad input.
-Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin = {},
-                 const ObjOptions& obj = {});
+HEMIRAD_API Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin = {},
+                             const ObjOptions& obj = {});
 
 /// A SCENE.json project file assembles a scene (paths relative to the JSON file's folder):
 ///
@@ -47,9 +48,9 @@ Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin 
 /// camera is the default view. Groups of the same name in several files are one group.
 /// Unknown keys are errors naming the key; every error names the file and the line. Lengths
 /// are in the OBJ's units, which must be metres for lux.
-Scene load_scene_json(const std::string& path, const ObjOptions& obj = {});
+HEMIRAD_API Scene load_scene_json(const std::string& path, const ObjOptions& obj = {});
 /// Whether a scene argument names a SCENE.json file (ends in .json, any case).
-bool is_scene_json(const std::string& path);
+HEMIRAD_API bool is_scene_json(const std::string& path);
 
 /// Loads a glTF 2.0 file, `.gltf` (JSON, with its .bin buffers and images beside it or as data
 /// URIs) or `.glb` (binary), with Debian's TinyGLTF (gltf_loader.cpp):
@@ -72,13 +73,13 @@ bool is_scene_json(const std::string& path);
 /// accessors or views outside their buffers, indices outside the vertices, non-finite numbers,
 /// a node that is its own ancestor; TinyGLTF's own messages are passed on. A texture that
 /// cannot be read is a warning (the material keeps baseColorFactor alone).
-Scene load_gltf(const std::string& path, const ObjOptions& options = {});
+HEMIRAD_API Scene load_gltf(const std::string& path, const ObjOptions& options = {});
 /// Whether a scene argument names a glTF file (ends in .gltf or .glb, any case).
-bool is_gltf(const std::string& path);
+HEMIRAD_API bool is_gltf(const std::string& path);
 
 /// Loads an OBJ file and the MTL files it names (obj_loader.cpp lists what is tolerated, with a
 /// warning each, and what is an error). Throws InputError naming file, line and value.
-Scene load_obj(const std::string& path, const ObjOptions& options = {});
+HEMIRAD_API Scene load_obj(const std::string& path, const ObjOptions& options = {});
 
 /// A scene as the text of an OBJ file and its MTL (named `mtl_name` in `mtllib`): each distinct
 /// polygon corner once as `v` (shortest decimal that reads back to the same double), faces in
@@ -89,18 +90,19 @@ Scene load_obj(const std::string& path, const ObjOptions& options = {});
 struct ObjText {
     std::string obj, mtl;
 };
-ObjText scene_obj_text(const Scene& scene, const std::string& mtl_name);
+HEMIRAD_API ObjText scene_obj_text(const Scene& scene, const std::string& mtl_name);
 
 /// Writes the scene to `obj_path` (ending in .obj) and its MTL beside it (same name, .mtl),
 /// atomically. Returns the MTL's path. Throws InputError for a bad name, RuntimeError when a
 /// file cannot be written.
-std::string write_obj(const Scene& scene, const std::string& obj_path);
+HEMIRAD_API std::string write_obj(const Scene& scene, const std::string& obj_path);
 
 /// Built-in scenes: "cornell", "cube", "furnace", "sphere", "room" (make_light_room); the CIE 171
 /// rooms "cie53", "cie56", "cie57", "cie58" (options.rho, default 0.5) and paper 002's benchmark
 /// rooms "room402", "scene3138" (validation_scenes.h). Throws InputError for other names.
-Scene make_builtin(const std::string& name, const BuiltinOptions& options = {});
-bool is_builtin(const std::string& name);
-const char* builtin_names(); ///< "cornell, cube, furnace, sphere, room, cie53, ..., scene3138"
+HEMIRAD_API Scene make_builtin(const std::string& name, const BuiltinOptions& options = {});
+HEMIRAD_API bool is_builtin(const std::string& name);
+HEMIRAD_API const char*
+builtin_names(); ///< "cornell, cube, furnace, sphere, room, cie53, ..., scene3138"
 
 } // namespace hemirad

@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "hemirad/solver.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -44,15 +45,16 @@ inline constexpr std::uint32_t kSolutionFileVersion = 3;
 /// An option that affects results, as (command-line name, exact value text).
 using SolutionOption = std::pair<std::string, std::string>;
 
-/// The options of `o` that affect results: --ff, the hierarchy options, the shooter options
-/// and the provider options. A new option of SolverOptions, ProviderOptions or
-/// HierarchyOptions that changes results must be added here and to apply_solution_option(). Not
-/// included, so free to change on resume: --tolerance,
-/// --max-shots, --time-limit (stop criteria), --backend and --device (where it runs).
-std::vector<SolutionOption> solution_options(const SolverOptions& o);
+/// The options of `o` that affect results, in the order of the options table
+/// (solver_options.h): those whose SolverOption::saved is true, named as on the command line,
+/// values as SolverOption::text() writes them. Not included, so free to change on resume: the
+/// stop criteria (--tolerance, --max-shots, --time-limit), --memory-limit, and where the solve
+/// runs (--backend, --device).
+HEMIRAD_API std::vector<SolutionOption> solution_options(const SolverOptions& o);
 /// Sets the option `name` of `o` from its saved text. Throws InputError for an unknown name
 /// or a malformed value (`file` names the solution file in the message).
-void apply_solution_option(SolverOptions& o, const SolutionOption& option, const std::string& file);
+HEMIRAD_API void apply_solution_option(SolverOptions& o, const SolutionOption& option,
+                                       const std::string& file);
 
 struct SolutionFile {
     std::uint64_t scene_hash = 0;
@@ -63,22 +65,22 @@ struct SolutionFile {
 
 /// The bytes of a solution file for the solver's current state (call between steps, before
 /// Solver::solution()).
-std::string solution_bytes(const Solver& solver);
+HEMIRAD_API std::string solution_bytes(const Solver& solver);
 /// Writes solution_bytes() to `path` atomically. Throws RuntimeError naming the path.
-void save_solution(const std::string& path, const Solver& solver);
+HEMIRAD_API void save_solution(const std::string& path, const Solver& solver);
 
 /// Parses solution-file bytes; `path` names the file in messages. Throws InputError.
-SolutionFile parse_solution(const std::string& bytes, const std::string& path);
+HEMIRAD_API SolutionFile parse_solution(const std::string& bytes, const std::string& path);
 /// Reads and parses a solution file. Throws InputError (missing, truncated, corrupt).
-SolutionFile read_solution(const std::string& path);
+HEMIRAD_API SolutionFile read_solution(const std::string& path);
 
 /// Checks that `file` (read from `path`) was saved for `scene` (loaded from `scene_path`):
 /// throws InputError naming both files and both hashes if not.
-void check_solution_scene(const SolutionFile& file, const std::string& path, const Scene& scene,
-                          const std::string& scene_path);
+HEMIRAD_API void check_solution_scene(const SolutionFile& file, const std::string& path,
+                                      const Scene& scene, const std::string& scene_path);
 
 /// Restores the solver's state from `file` (read from `path`); the solver must have been built
 /// for the same scene and with the saved options. Throws InputError naming `path`.
-void resume_solution(Solver& solver, const SolutionFile& file, const std::string& path);
+HEMIRAD_API void resume_solution(Solver& solver, const SolutionFile& file, const std::string& path);
 
 } // namespace hemirad

@@ -1,5 +1,5 @@
 // Progressive-refinement radiosity (shooting) over the patch hierarchy (paper 002 §2, §4).
-// The API is a loop (STYLE.md §4):
+// The API is a loop (docs/design.md, "The solver's API is a loop"):
 //
 //     Solver s(scene, options);
 //     while (s.step()) show(s.last_shot());
@@ -18,6 +18,7 @@
 #include "hemirad/hierarchy.h"
 #include "hemirad/provider.h"
 #include "hemirad/scene.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad {
 
@@ -106,14 +107,14 @@ struct ShotRecord {
 
 /// Checks the options a user can get wrong (InputError naming the option and its value).
 /// The Solver's constructor calls it; tools call it first, before any expensive set-up.
-void validate_options(const SolverOptions& options);
+HEMIRAD_API void validate_options(const SolverOptions& options);
 
 enum class StopReason { Running, Converged, MaxShots, TimeLimit, NothingToShoot };
-const char* to_string(StopReason r);
+HEMIRAD_API const char* to_string(StopReason r);
 
 class ClusterTree;
 
-class Solver {
+class HEMIRAD_API Solver {
   public:
     /// Builds the hierarchy and the provider named by options.ff. Throws InputError for bad
     /// options, RuntimeError if the provider cannot start (no GL context).

@@ -15,9 +15,11 @@
 
 #include <glm/glm.hpp>
 
+#include "hemirad/visibility.h"
+
 namespace hemirad {
 
-struct Texture {
+struct HEMIRAD_API Texture {
     struct Level {
         int width = 0, height = 0;
         std::vector<glm::vec3> texels; ///< row-major, row 0 the top; linear reflectance
@@ -39,20 +41,19 @@ struct Texture {
     glm::dvec3 mean() const;
 };
 
-/// sRGB transfer function, decoding: encoded value in [0, 1] to linear (IEC 61966-2-1).
-double srgb_to_linear(double encoded);
-
 /// A texture from linear texels (row 0 the top), with its mipmap. width, height >= 1 and
 /// texels.size() == width * height (checked).
-Texture make_texture(const std::string& name, int width, int height, std::vector<glm::vec3> linear);
+HEMIRAD_API Texture make_texture(const std::string& name, int width, int height,
+                                 std::vector<glm::vec3> linear);
 
 /// Decodes a PNG or JPEG (anything stb_image reads: also BMP, TGA, GIF, PSD, HDR, PNM) held in
 /// memory, sRGB to linear (HDR images are linear already). Throws InputError naming `name` and
 /// stb_image's reason when it cannot be decoded, or when it has more than 4096 x 4096 texels
 /// (12 bytes a texel, a third more for the mipmap, in memory and again on the GPU: about 270 MB
 /// each at that size).
-Texture decode_texture(const std::string& name, const unsigned char* bytes, std::size_t size);
+HEMIRAD_API Texture decode_texture(const std::string& name, const unsigned char* bytes,
+                                   std::size_t size);
 /// Reads and decodes a file (as decode_texture). Throws InputError naming the file.
-Texture load_texture(const std::string& path);
+HEMIRAD_API Texture load_texture(const std::string& path);
 
 } // namespace hemirad

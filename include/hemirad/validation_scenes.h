@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "hemirad/scene.h"
+#include "hemirad/visibility.h"
 
 namespace hemirad::validation {
 
@@ -32,12 +33,12 @@ struct CieRoom {
 /// [W m^-2, or lm m^-2 for illuminance in lux]. Groups: floor, ceiling, wall_x0, wall_x1,
 /// wall_z0, wall_z1, source.
 constexpr HorizontalRect kCie53Source{1.5, 2.5, 1.5, 2.5, CieRoom::height};
-Scene make_cie53_area_source(double exitance = 1000.0);
+HEMIRAD_API Scene make_cie53_area_source(double exitance = 1000.0);
 
 /// The CIE 171 room lit by point-source luminaires (photometry.h) only: every surface of
 /// reflectance `rho` (0: black, for direct light only), the ceiling whole; the luminaires are
 /// oriented (Luminaire::orient). Groups: floor, wall_x0, wall_x1, wall_z0, wall_z1, ceiling.
-Scene make_cie_room(double rho, const std::vector<Luminaire>& luminaires);
+HEMIRAD_API Scene make_cie_room(double rho, const std::vector<Luminaire>& luminaires);
 
 /// CIE 171 tests 5.6 and 5.7: light reflected from a uniformly lit diffuse floor. The
 /// floor's reflected exitance rho*E_floor is modelled as emission (a Lambertian emitter of
@@ -49,19 +50,19 @@ Scene make_cie_room(double rho, const std::vector<Luminaire>& luminaires);
 constexpr double kCie56FloorReflectance = 0.30;
 constexpr double kCie56FloorIlluminance = 500.0; ///< E_floor [lx]; exitance = rho*E = 150
 constexpr HorizontalRect kCie57Plate{1.5, 2.5, 1.5, 2.5, 1.0};
-Scene make_cie56_lit_floor(double floor_exitance, bool obstruction);
+HEMIRAD_API Scene make_cie56_lit_floor(double floor_exitance, bool obstruction);
 
 /// CIE 171 test 5.8: inter-reflection in a closed cube of side `side` [m], every surface of
 /// reflectance `rho` (the source too), with a 1 m x 1 m source of `exitance` centred in the
 /// ceiling (flush: the ceiling is a frame around it). Groups: floor, ceiling, walls, source.
-Scene make_cie58_cube(double rho, double side = 4.0, double exitance = 1000.0);
+HEMIRAD_API Scene make_cie58_cube(double rho, double side = 4.0, double exitance = 1000.0);
 
 /// A closed room of side `side` (every surface reflectance `rho`) lit by a small square light
 /// (side/5 wide, exitance `exitance`, facing down) hanging side/1000 under the centre of the
 /// ceiling: the light's footprint on the ceiling is a sharp shadow edge right next to it, the
 /// hardest case for a leaf-based read-out. Groups: floor, wall_x0, wall_x1, wall_z0, wall_z1,
 /// ceiling, light. The built-in scene "room" (1 m, rho 0.5).
-Scene make_light_room(double rho = 0.5, double side = 1.0, double exitance = 1.0);
+HEMIRAD_API Scene make_light_room(double rho = 0.5, double side = 1.0, double exitance = 1.0);
 
 /// A furnished room in the manner of paper 002 §5 (Figure 3): walls, floor, ceiling,
 /// rectangular lights under the ceiling, and "sets" of one table (top + 4 legs) with four
@@ -75,16 +76,16 @@ struct BenchRoomOptions {
     int cabinets = 7; ///< extra boxes along the walls (>= 0)
     double rho = 0.6; ///< reflectance of walls, ceiling and furniture (floor 0.3)
 };
-Scene make_bench_room(const BenchRoomOptions& options = {});
+HEMIRAD_API Scene make_bench_room(const BenchRoomOptions& options = {});
 /// Polygon count that make_bench_room(options) produces.
-int bench_room_polygons(const BenchRoomOptions& options);
+HEMIRAD_API int bench_room_polygons(const BenchRoomOptions& options);
 
 /// A furnished open-plan floor of about `triangles` triangles (>= 1000), for the scale
 /// benchmarks (hemirad-bench scale_triangles_1e5, _1e6): make_bench_room with as many
 /// table-and-chair sets as it takes (a 4 m grid; one ceiling light per 4 sets, at least 6; one
 /// cabinet per 8 sets, at least 7), every quad split into two triangles, as an exporter that
 /// writes only triangles would. Deterministic; groups and materials as make_bench_room.
-Scene make_furnished_floor(long triangles);
+HEMIRAD_API Scene make_furnished_floor(long triangles);
 
 /// A real-building stand-in in the manner of the Sponza atrium (Dabrovic 2001), for the
 /// hemirad-bench experiment real_building and the built-in scene "courtyard": a courtyard

@@ -3,12 +3,12 @@
 // Internal header.
 #pragma once
 
-#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <vector>
 
+#include "core/timer.h"
 #include "ff/bvh.h"
 #include "hemirad/form_factors.h"
 
@@ -48,11 +48,6 @@ dvec3 patch_point(const PatchGeometry& g, double s, double t, double& jacobian);
 
 /// Deterministic hash mixing (splitmix64 finaliser).
 std::uint64_t mix64(std::uint64_t x);
-
-/// Seconds since `start`.
-inline double seconds_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 /// Base of the CPU providers: scene, discretisation, options, a BVH shared by all, timings.
 class CpuProvider : public FormFactorProvider {

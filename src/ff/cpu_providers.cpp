@@ -1,14 +1,14 @@
 // CPU form-factor providers: the factory and the linking code they share (cpu_linking.h).
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <sstream>
-#include <thread>
 
+#include "core/parallel.h"
 #include "ff/cpu_linking.h"
 #include "hemirad/error.h"
+#include "hemirad/solver.h"
+#include "hemirad/solver_options.h"
 
 namespace hemirad {
 
@@ -63,15 +63,7 @@ void for_each_polygon(std::size_t count, int threads,
                       const std::function<void(std::uint32_t, std::vector<Link>&)>& fn,
                       std::vector<Link>& links) {
     std::vector<std::vector<Link>> per(count);
-    std::atomic<std::size_t> next{0};
-    const auto work = [&] {
-        for (std::size_t i; (i = next.fetch_add(1)) < count;) fn(std::uint32_t(i), per[i]);
-    };
-    const int extra = std::max(0, std::min<int>(threads, int(count)) - 1);
-    std::vector<std::thread> pool;
-    for (int t = 0; t < extra; ++t) pool.emplace_back(work);
-    work();
-    for (std::thread& t : pool) t.join();
+    parallel_for(count, threads, [&](std::size_t i) { fn(std::uint32_t(i), per[i]); });
     std::size_t total = 0;
     for (const auto& v : per) total += v.size();
     links.reserve(links.size() + total);
@@ -144,8 +136,7 @@ CpuProvider::CpuProvider(const Scene& scene, const Discretisation& disc,
         throw InputError(m.str());
     }
     for (std::uint8_t& d : disc_.depth) d = std::min<std::uint8_t>(d, kMaxDepth);
-    const unsigned hw = std::thread::hardware_concurrency();
-    threads_ = int(std::clamp(hw, 1u, 2u));
+    threads_ = int(std::min(thread_count(0), 2u)); // at most 2: the CPU providers' own limit
 }
 
 void CpuProvider::begin_shot(const Shooter& s, std::vector<Link>& links) const {
@@ -160,7 +151,7 @@ void CpuProvider::begin_shot(const Shooter& s, std::vector<Link>& links) const {
 }
 
 void CpuProvider::shoot_point(const Luminaire& l, std::vector<Link>& links) {
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = SteadyClock::now();
     links.clear();
     const double power = l.power();
     if (!(power > 0)) return;
@@ -194,17 +185,9 @@ void CpuProvider::shoot_point(const Luminaire& l, std::vector<Link>& links) {
 std::unique_ptr<FormFactorProvider> make_cpu_provider(const std::string& name, const Scene& scene,
                                                       const Discretisation& disc,
                                                       const CpuProviderOptions& o) {
-    const auto bad = [](const char* what, double value, const char* range) {
-        std::ostringstream m;
-        m << "form-factor option " << what << " = " << value << " is out of range " << range;
-        throw InputError(m.str());
-    };
-    if (!(o.link_angle > 0 && o.link_angle <= 1)) bad("link_angle", o.link_angle, "(0, 1]");
-    if (o.visibility_samples < 1 || o.visibility_samples > 16)
-        bad("visibility_samples", o.visibility_samples, "1..16");
-    if (o.gauss_order < 1 || o.gauss_order > 16) bad("gauss_order", o.gauss_order, "1..16");
-    if (o.sr_rays < 1) bad("sr_rays", o.sr_rays, ">= 1");
-    if (o.sr_points < 1) bad("sr_points", o.sr_points, ">= 1");
+    SolverOptions ranges; // the ranges are the options table's (solver_options.h)
+    ranges.provider.cpu = o;
+    validate_solver_options(ranges, SolverOption::Check::Cpu);
     if (name != "reference" && name != "pdm" && name != "sr")
         throw InputError("unknown form-factor method '" + name +
                          "' (expected reference, pdm or sr)");

@@ -1,12 +1,11 @@
-#include <chrono>
-
+#include "core/timer.h"
 #include "hemirad/provider.h"
 
 namespace hemirad {
 
 GroupFormFactors group_form_factors(const Scene& scene, const Discretisation& disc,
                                     FormFactorProvider& provider, std::uint32_t group) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const Stopwatch timer;
     GroupFormFactors r;
     r.to.assign(scene.groups.size(), 0.0);
     double area_from = 0;
@@ -36,7 +35,7 @@ GroupFormFactors group_form_factors(const Scene& scene, const Discretisation& di
         f /= area_from;
         r.row_sum += f;
     }
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.seconds = timer.seconds();
     return r;
 }
 

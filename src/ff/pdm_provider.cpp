@@ -4,7 +4,6 @@
 //   F(j->S) = 1/A_j  sum_a sum_b  W_a W_b  cos(th_j) cos(th_S) / (pi r^2)  V(x_a, y_b),
 // x_a, W_a the nodes and weights (parametric Jacobian included) on the receiver node j,
 // y_b, W_b those on the shooter patch S.
-#include <chrono>
 #include <cmath>
 #include <numbers>
 
@@ -42,7 +41,7 @@ class PdmProvider final : public CpuProvider {
     std::string name() const override { return "pdm"; }
 
     void shoot(const Shooter& shooter, std::vector<Link>& links) override {
-        const auto start = std::chrono::steady_clock::now();
+        const auto start = SteadyClock::now();
         begin_shot(shooter, links);
         std::vector<Node> shooter_nodes;
         gauss_nodes(shooter.geometry, x_, w_, shooter_nodes);

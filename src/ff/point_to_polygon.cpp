@@ -1,5 +1,5 @@
 // Analytic form factor from a differential area to a polygon (Lambert/Nusselt contour
-// integral; DESIGN.md "The method in one page", step 3; paper 002's fragment program, here in
+// integral; docs/design.md, "The method", step 3; paper 002's fragment program, here in
 // double precision for the CPU reference path).
 #include "hemirad/form_factors.h"
 

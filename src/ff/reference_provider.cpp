@@ -1,7 +1,6 @@
 // "reference" provider: analytic point-to-polygon form factor at each receiving node's centre
 // (the value paper 002's fragment program computes, in double precision) times a ray-cast
 // visibility fraction.
-#include <chrono>
 #include <cmath>
 
 #include "ff/cpu_linking.h"
@@ -44,7 +43,7 @@ class ReferenceProvider final : public CpuProvider {
     std::string name() const override { return "reference"; }
 
     void shoot(const Shooter& shooter, std::vector<Link>& links) override {
-        const auto start = std::chrono::steady_clock::now();
+        const auto start = SteadyClock::now();
         begin_shot(shooter, links);
         const std::vector<Sample> samples =
             shooter_samples(shooter.geometry, options_.visibility_samples);

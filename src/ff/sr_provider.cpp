@@ -11,12 +11,11 @@
 // std::mt19937_64 seeded from options.seed, the shooter address and the chunk's index, so
 // results do not depend on the number of threads.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <random>
-#include <thread>
 
+#include "core/parallel.h"
 #include "core/sampling.h"
 #include "ff/cpu_linking.h"
 
@@ -32,7 +31,7 @@ class SrProvider final : public CpuProvider {
     std::string name() const override { return "sr"; }
 
     void shoot(const Shooter& s, std::vector<Link>& links) override {
-        const auto start = std::chrono::steady_clock::now();
+        const auto start = SteadyClock::now();
         begin_shot(s, links);
         const int points = options_.sr_points, rays = options_.sr_rays;
         const std::uint64_t base =
@@ -42,35 +41,29 @@ class SrProvider final : public CpuProvider {
         orthonormal_basis(s.normal, t, b);
         // Hit keys: (polygon << 32) | patch index at the polygon's leaf level.
         const int chunks = (points + kChunk - 1) / kChunk;
-        const int nthreads = std::min(threads_, chunks);
-        std::vector<std::vector<std::uint64_t>> keys(nthreads);
-        const auto work = [&](int thread) {
-            std::vector<std::uint64_t>& out = keys[thread];
-            for (int c = thread; c < chunks; c += nthreads) {
-                std::mt19937_64 rng(mix64(base + std::uint64_t(c)));
-                const auto uniform01 = [&rng] { return double(rng() >> 11) * 0x1.0p-53; };
-                for (int p = c * kChunk; p < std::min(points, (c + 1) * kChunk); ++p) {
-                    const double pick = uniform01(), u1 = uniform01(), u2 = uniform01();
-                    const dvec3 origin =
-                        area_point(s.geometry.corners.data(), s.geometry.count, pick, u1, u2);
-                    for (int k = 0; k < rays; ++k) {
-                        const double r1 = uniform01(), r2 = uniform01();
-                        const dvec3 dir = cosine_direction(s.normal, t, b, r1, r2);
-                        Hit hit;
-                        if (!bvh_->intersect(origin, dir, 1e300, hit, s.address.polygon)) continue;
-                        if (!hit.front) continue; // absorbed by the back of a one-sided polygon
-                        const Polygon& q = scene_.polygons[hit.polygon];
-                        const std::uint32_t level = std::uint32_t(depth_of(hit.polygon));
-                        out.push_back((std::uint64_t(hit.polygon) << 32) |
-                                      patch_at(q, level, hit.u, hit.v));
-                    }
+        std::vector<std::vector<std::uint64_t>> keys(static_cast<std::size_t>(chunks)); // per chunk
+        parallel_for(std::size_t(chunks), threads_, [&](std::size_t chunk) {
+            const int c = int(chunk);
+            std::vector<std::uint64_t>& out = keys[chunk];
+            std::mt19937_64 rng(mix64(base + std::uint64_t(c)));
+            const auto uniform01 = [&rng] { return double(rng() >> 11) * 0x1.0p-53; };
+            for (int p = c * kChunk; p < std::min(points, (c + 1) * kChunk); ++p) {
+                const double pick = uniform01(), u1 = uniform01(), u2 = uniform01();
+                const dvec3 origin =
+                    area_point(s.geometry.corners.data(), s.geometry.count, pick, u1, u2);
+                for (int k = 0; k < rays; ++k) {
+                    const double r1 = uniform01(), r2 = uniform01();
+                    const dvec3 dir = cosine_direction(s.normal, t, b, r1, r2);
+                    Hit hit;
+                    if (!bvh_->intersect(origin, dir, 1e300, hit, s.address.polygon)) continue;
+                    if (!hit.front) continue; // absorbed by the back of a one-sided polygon
+                    const Polygon& q = scene_.polygons[hit.polygon];
+                    const std::uint32_t level = std::uint32_t(depth_of(hit.polygon));
+                    out.push_back((std::uint64_t(hit.polygon) << 32) |
+                                  patch_at(q, level, hit.u, hit.v));
                 }
             }
-        };
-        std::vector<std::thread> pool;
-        for (int i = 1; i < nthreads; ++i) pool.emplace_back(work, i);
-        work(0);
-        for (std::thread& th : pool) th.join();
+        });
         std::vector<std::uint64_t> all;
         for (const auto& k : keys) all.insert(all.end(), k.begin(), k.end());
         std::sort(all.begin(), all.end());

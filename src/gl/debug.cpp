@@ -1,5 +1,5 @@
-// GL errors, third error channel (STYLE.md §3): the debug-output callback. On in
-// HEMIRAD_GL_DEBUG builds and with ContextOptions::debug.
+// GL errors, third error channel (docs/design.md, "Error channels"): the debug-output callback. On
+// in HEMIRAD_GL_DEBUG builds and with ContextOptions::debug.
 #include <cstdio>
 #include <cstring>
 

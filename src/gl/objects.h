@@ -1,5 +1,5 @@
-// One move-only RAII type per GL object (STYLE.md §2, after Magnum's GL/Buffer.h): copy
-// deleted, move noexcept leaving the source empty (id 0), destructor deletes. A default-
+// One move-only RAII type per GL object (docs/design.md, "GL objects"; after Magnum's GL/Buffer.h):
+// copy deleted, move noexcept leaving the source empty (id 0), destructor deletes. A default-
 // constructed object is empty and touches no GL; the factories (Buffer::create(), ...) make
 // one with DSA and need a current context. The helpers are DSA too: nothing depends on what
 // happens to be bound.

@@ -8,7 +8,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "core/projection.h"
+#include "core/timer.h"
 #include "gl/program.h"
+#include "gl/state.h"
 #include "gpu/acos_table.h"
 #include "hemirad/error.h"
 
@@ -28,20 +31,6 @@ struct PolygonGpu { // std430 layout of PolygonData in hemicube.frag
     std::int32_t info[4];
 };
 static_assert(sizeof(PolygonGpu) == 96);
-
-// Reversed-Z perspective with an infinite far plane, for glClipControl(ZERO_TO_ONE): depth =
-// near / distance, 1 at the near plane and 0 at infinity. The frustum at distance `near`
-// spans [l, r] x [b, t].
-glm::mat4 reversed_z_frustum(double l, double r, double b, double t, double near) {
-    glm::dmat4 m(0.0);
-    m[0][0] = 2 * near / (r - l);
-    m[1][1] = 2 * near / (t - b);
-    m[2][0] = (r + l) / (r - l);
-    m[2][1] = (t + b) / (t - b);
-    m[3][2] = near;
-    m[2][3] = -1;
-    return glm::mat4(m);
-}
 
 } // namespace
 
@@ -265,6 +254,7 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
     const dvec3 eye = c - origin_;
     const double eps = eps_;
 
+    const gl::StateGuard guard; // restores what this changes (gl/state.h)
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
@@ -310,7 +300,7 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
         const dvec3 side = glm::cross(v.dir, v.up); // screen x
         dvec3 planes[4] = {v.dir + side, v.dir - side, v.dir + v.up, v.dir - v.up};
         if (f != 0) planes[2] = v.up; // the bottom of a side face is the shooter's plane
-        const auto t_cull = std::chrono::steady_clock::now();
+        const auto t_cull = SteadyClock::now();
         draw_first_.clear();
         draw_count_.clear();
         // Range of dot(x - c, n) over a box: min and max over its corners.
@@ -361,8 +351,7 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
                 if (!outside) draw_polygons(i, i + 1);
             }
         }
-        cull_seconds_ +=
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t_cull).count();
+        cull_seconds_ += seconds_since(t_cull);
         if (draw_first_.empty()) continue;
         ranges_ += draw_first_.size();
         glViewport(face.x, face.y, face.w, face.h);
@@ -370,14 +359,9 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
         glMultiDrawArrays(GL_TRIANGLES, draw_first_.data(), draw_count_.data(),
                           GLsizei(draw_first_.size()));
     }
-    glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
-    glDepthFunc(GL_LESS);
     // Wait for the rasteriser here, so that the time of render() is the rendering and that
     // of read_back() the copy (the readback would wait anyway; nothing is lost).
     glFinish();
-    glBindVertexArray(0);
-    glUseProgram(0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 void HemicubeRenderer::set_hidden(const std::vector<std::uint32_t>& polygons) {

@@ -14,6 +14,7 @@
 #include <functional>
 #include <optional>
 
+#include "core/timer.h"
 #include "gpu/hemicube.h"
 #include "gpu/hemicube_visibility.h"
 #include "hemirad/error.h"
@@ -24,10 +25,8 @@ namespace hemirad {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) {
-    return std::chrono::duration<double>(Clock::now() - t).count();
-}
+using Clock = SteadyClock;             // core/timer.h
+constexpr auto since = &seconds_since; // [s]
 
 enum class Mode { Hemicube, Analytic, Hybrid };
 
@@ -663,22 +662,6 @@ class HemicubeProvider final : public FormFactorProvider {
 };
 
 } // namespace
-
-void validate_gpu_options(const GpuProviderOptions& o) {
-    const auto check_res = [](int r, const char* name) {
-        if (r < 16 || r > 4096 || r % 2 != 0)
-            throw InputError(std::string(name) + " " + std::to_string(r) +
-                             " must be an even number in 16..4096");
-    };
-    if (o.resolution != 0) check_res(o.resolution, "--resolution");
-    check_res(o.min_resolution, "--min-resolution");
-    check_res(o.max_resolution, "--max-resolution");
-    if (o.min_resolution > o.max_resolution)
-        throw InputError("--min-resolution " + std::to_string(o.min_resolution) +
-                         " exceeds --max-resolution " + std::to_string(o.max_resolution));
-    if (!(std::abs(o.lod_bias) <= 16))
-        throw InputError("--lod-bias " + num(o.lod_bias) + " must be in -16..16");
-}
 
 std::unique_ptr<FormFactorProvider> make_hemicube_provider(const std::string& mode,
                                                            const Scene& scene,

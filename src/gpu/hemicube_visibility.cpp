@@ -54,8 +54,8 @@ dvec3 HemicubeVisibility::ray(int f, int i, int j) const {
 
 bool HemicubeVisibility::hides(int f, int i, int j, std::uint32_t p) const {
     const HemicubeLayout::Face& face = layout_->faces[f];
-    const long q = shown(std::size_t(face.y + j) * std::size_t(layout_->width) +
-                         std::size_t(face.x + i));
+    const long q =
+        shown(std::size_t(face.y + j) * std::size_t(layout_->width) + std::size_t(face.x + i));
     if (q < 0) return false; // nothing there: nothing hides p along that ray
     const dvec3 u = ray(f, i, j);
     const Polygon& P = scene_->polygons[p];

@@ -20,8 +20,8 @@ class HemicubeVisibility {
     /// The hemicube `rgba` (IDs as in FormFactorProvider::HemicubeImage) rendered with
     /// `layout` from the shooter whose frame is `frame`, its eye at `eye`. Keeps pointers: all
     /// must outlive this object.
-    HemicubeVisibility(const Scene& scene, const HemicubeLayout& layout,
-                       const HemicubeFrame& frame, const float* rgba, const dvec3& eye);
+    HemicubeVisibility(const Scene& scene, const HemicubeLayout& layout, const HemicubeFrame& frame,
+                       const float* rgba, const dvec3& eye);
 
     /// Is point x, on polygon `own`, seen from the eye? It is if the pixel its direction
     /// falls in shows `own`, nothing, or a polygon that the segment from the eye to x does

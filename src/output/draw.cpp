@@ -1,4 +1,4 @@
-#include "output/draw.h"
+#include "hemirad/draw.h"
 
 #include <algorithm>
 #include <array>

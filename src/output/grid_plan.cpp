@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "hemirad/draw.h"
 #include "hemirad/grid.h"
-#include "output/draw.h"
 
 namespace hemirad {
 

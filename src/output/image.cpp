@@ -6,21 +6,10 @@
 #include <cmath>
 #include <vector>
 
+#include "core/colour.h"
 #include "hemirad/error.h"
 
 namespace hemirad {
-
-double srgb_encode(double v) {
-    if (!(v > 0.0)) return 0.0; // also NaN
-    if (v >= 1.0) return 1.0;
-    return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
-}
-
-double srgb_decode(double e) {
-    if (!(e > 0.0)) return 0.0;
-    if (e >= 1.0) return 1.0;
-    return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
-}
 
 namespace {
 

@@ -1,5 +1,6 @@
 #include "hemirad/json.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 
@@ -69,12 +70,17 @@ void Json::write(std::string& out, int indent, int depth) const {
         out += *b ? "true" : "false";
     else if (auto* x = std::get_if<double>(&v_)) {
         HEMIRAD_CHECK(std::isfinite(*x));
+        // Whole numbers (counts, sizes) as integers; others in the shortest form that reads
+        // back as the same double (std::to_chars: 0.1, not 0.10000000000000001).
         char buf[32];
-        if (*x == std::floor(*x) && std::abs(*x) < 1e15)
+        if (*x == std::floor(*x) && std::abs(*x) < 1e15) {
             std::snprintf(buf, sizeof buf, "%.0f", *x);
-        else
-            std::snprintf(buf, sizeof buf, "%.17g", *x);
-        out += buf;
+            out += buf;
+        } else {
+            const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, *x);
+            HEMIRAD_CHECK(r.ec == std::errc());
+            out.append(buf, r.ptr);
+        }
     } else if (auto* s = std::get_if<std::string>(&v_))
         write_string(out, *s);
     else if (auto* a = std::get_if<Array>(&v_)) {

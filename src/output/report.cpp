@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/line_reader.h"
+#include "core/parse.h"
 #include "hemirad/error.h"
 #include "hemirad/image.h"
 #include "hemirad/readout.h"
@@ -155,11 +156,13 @@ std::vector<Probe> read_probes(const std::string& path) {
         bool numeric = true, text = false;
         std::string bad_cell;
         while (std::getline(ss, cell, ',')) {
-            char* end = nullptr;
-            const double x = std::strtod(cell.c_str(), &end);
-            if (end == cell.c_str()) text = true; // no number at all: a header's word
-            while (end && (*end == ' ' || *end == '\t')) ++end;
-            if (end == cell.c_str() || (end && *end != '\0') || !std::isfinite(x)) {
+            double x = 0;
+            const char* last = cell.data() + cell.size();
+            const NumberRead r = read_double(cell.data(), last, x);
+            if (!r.found(cell.data())) text = true; // no number at all: a header's word
+            const char* end = r.end;
+            while (end != last && (*end == ' ' || *end == '\t')) ++end;
+            if (!r.found(cell.data()) || end != last || !std::isfinite(x)) {
                 numeric = false;
                 bad_cell = cell;
                 break;

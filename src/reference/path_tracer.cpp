@@ -44,13 +44,12 @@
 #include "hemirad/reference.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <mutex>
 #include <numbers>
-#include <thread>
 
+#include "core/parallel.h"
 #include "core/sampling.h"
 #include "ff/bvh.h"
 #include "hemirad/error.h"
@@ -251,26 +250,14 @@ std::vector<ReferenceValue> reference_irradiance(const Scene& scene,
     if (probes.empty()) return values;
     const double offset = kOffset * scene.bounds().diagonal();
     const PathTracer tracer(scene, options.max_bounces, offset);
-    unsigned threads = options.threads > 0 ? unsigned(options.threads)
-                                           : std::max(1u, std::thread::hardware_concurrency());
-    threads = unsigned(std::min<std::size_t>(threads, probes.size()));
-    std::atomic<std::size_t> next{0};
     std::mutex progress_mutex;
     std::size_t done = 0;
-    const auto work = [&] {
-        for (;;) {
-            const std::size_t i = next.fetch_add(1);
-            if (i >= probes.size()) return;
-            values[i] = estimate(tracer, scene, offset, probes[i], i, options);
-            std::lock_guard lock(progress_mutex);
-            ++done;
-            if (progress) progress(done, probes.size());
-        }
-    };
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-    for (std::thread& t : pool) t.join();
+    parallel_for(probes.size(), options.threads, [&](std::size_t i) {
+        values[i] = estimate(tracer, scene, offset, probes[i], i, options);
+        std::lock_guard lock(progress_mutex);
+        ++done;
+        if (progress) progress(done, probes.size());
+    });
     return values;
 }
 

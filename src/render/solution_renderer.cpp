@@ -45,8 +45,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "core/parse.h"
+#include "core/projection.h"
 #include "gl/objects.h"
 #include "gl/program.h"
+#include "gl/state.h"
 #include "hemirad/error.h"
 #include "render/point_weld.h"
 
@@ -110,73 +113,6 @@ int leaf_corners(const PolygonGrid& g, std::uint32_t index, std::array<std::uint
     return 3;
 }
 
-// Reversed-Z perspective with an infinite far plane, for glClipControl(ZERO_TO_ONE): depth =
-// near / distance (1 at the near plane, 0 at infinity), which spends float depth precision
-// evenly in log distance: the Cornell light 0.8 mm under the ceiling never fights it.
-glm::mat4 reversed_z_perspective(double fov_y_rad, double aspect, double near) {
-    const double f = 1.0 / std::tan(0.5 * fov_y_rad);
-    glm::dmat4 m(0.0);
-    m[0][0] = f / aspect;
-    m[1][1] = f;
-    m[3][2] = near;
-    m[2][3] = -1;
-    return glm::mat4(m);
-}
-
-/// Saves the GL state that rendering changes and a caller could care about; restores it on
-/// destruction.
-class StateGuard {
-  public:
-    StateGuard() {
-        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_fb_);
-        glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fb_);
-        glGetIntegerv(GL_VIEWPORT, viewport_);
-        glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
-        glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao_);
-        glGetIntegerv(GL_CLIP_ORIGIN, &clip_origin_);
-        glGetIntegerv(GL_CLIP_DEPTH_MODE, &clip_depth_);
-        glGetIntegerv(GL_DEPTH_FUNC, &depth_func_);
-        glGetIntegerv(GL_FRONT_FACE, &front_face_);
-        glGetIntegerv(GL_CULL_FACE_MODE, &cull_face_mode_);
-        glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_);
-        glGetIntegerv(GL_BLEND_SRC_RGB, &blend_func_[0]);
-        glGetIntegerv(GL_BLEND_DST_RGB, &blend_func_[1]);
-        glGetIntegerv(GL_BLEND_SRC_ALPHA, &blend_func_[2]);
-        glGetIntegerv(GL_BLEND_DST_ALPHA, &blend_func_[3]);
-        depth_test_ = glIsEnabled(GL_DEPTH_TEST);
-        cull_ = glIsEnabled(GL_CULL_FACE);
-        blend_ = glIsEnabled(GL_BLEND);
-    }
-    ~StateGuard() {
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_fb_));
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_fb_));
-        glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
-        glUseProgram(GLuint(program_));
-        glBindVertexArray(GLuint(vao_));
-        glClipControl(GLenum(clip_origin_), GLenum(clip_depth_));
-        glDepthFunc(GLenum(depth_func_));
-        glFrontFace(GLenum(front_face_));
-        glCullFace(GLenum(cull_face_mode_));
-        glDepthMask(depth_mask_);
-        glBlendFuncSeparate(GLenum(blend_func_[0]), GLenum(blend_func_[1]), GLenum(blend_func_[2]),
-                            GLenum(blend_func_[3]));
-        set(GL_DEPTH_TEST, depth_test_);
-        set(GL_CULL_FACE, cull_);
-        set(GL_BLEND, blend_);
-    }
-    StateGuard(const StateGuard&) = delete;
-    StateGuard& operator=(const StateGuard&) = delete;
-
-  private:
-    static void set(GLenum cap, GLboolean on) { on ? glEnable(cap) : glDisable(cap); }
-
-    GLint draw_fb_ = 0, read_fb_ = 0, viewport_[4] = {}, program_ = 0, vao_ = 0;
-    GLint clip_origin_ = GL_LOWER_LEFT, clip_depth_ = GL_NEGATIVE_ONE_TO_ONE;
-    GLint depth_func_ = GL_LESS, front_face_ = GL_CCW, cull_face_mode_ = GL_BACK;
-    GLint blend_func_[4] = {GL_ONE, GL_ZERO, GL_ONE, GL_ZERO}; ///< src/dst RGB, src/dst alpha
-    GLboolean depth_mask_ = GL_TRUE, depth_test_ = GL_FALSE, cull_ = GL_FALSE, blend_ = GL_FALSE;
-};
-
 /// cos(1 degree): polygons whose normals differ by more than this are never welded.
 constexpr double kWeldCosAngle = 0.99984769515639;
 /// Weld distance relative to the scene's bounding-box diagonal.
@@ -191,13 +127,9 @@ Camera parse_camera(const std::string& text) {
     std::stringstream in(text);
     std::string item;
     while (std::getline(in, item, ',')) {
-        std::size_t used = 0;
         double x = 0;
-        try {
-            x = std::stod(item, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
+        const NumberRead r = read_double(item.data(), item.data() + item.size(), x);
+        std::size_t used = r.range_error ? 0 : std::size_t(r.end - item.data());
         while (used < item.size() && std::isspace(static_cast<unsigned char>(item[used]))) ++used;
         if (used == 0 || used != item.size() || !std::isfinite(x))
             throw InputError("camera '" + text + "': value " + std::to_string(v.size() + 1) + " '" +
@@ -615,7 +547,7 @@ ImageRGB SolutionRenderer::render(const Hierarchy& h, const Camera& camera,
     check_size("width", options.width);
     check_size("height", options.height);
     Impl& m = *impl_;
-    const StateGuard guard;
+    const gl::StateGuard guard;
     m.ensure_geometry(h);
     m.compute_colours(h, options);
     const int w = options.width, ht = options.height;
@@ -658,7 +590,7 @@ ImageRGB SolutionRenderer::render(const Hierarchy& h, const Camera& camera,
 void SolutionRenderer::draw(const Hierarchy& h, const Camera& camera, const RenderOptions& options,
                             int viewport_width, int viewport_height) {
     Impl& m = *impl_;
-    const StateGuard guard;
+    const gl::StateGuard guard;
     m.ensure_geometry(h);
     m.compute_colours(h, options);
     const float bg[4] = {float(options.background.r), float(options.background.g),
@@ -673,7 +605,7 @@ void SolutionRenderer::draw(const Hierarchy& h, const Camera& camera, const Rend
 void SolutionRenderer::draw_highlight(const Camera& camera, const PatchAddress& patch,
                                       const dvec3& colour, int viewport_width,
                                       int viewport_height) {
-    const StateGuard guard;
+    const gl::StateGuard guard;
     impl_->draw_highlight(camera, patch, colour, viewport_width, viewport_height);
 }
 

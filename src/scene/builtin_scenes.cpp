@@ -61,12 +61,12 @@ void check_subdiv(const BuiltinOptions& o) {
         throw InputError("--subdiv " + std::to_string(o.subdiv) + " must be in 1..1000");
 }
 
-// The original Cornell box (REFERENCES.md §4), in mm. The light quad lies in the ceiling
+// The original Cornell box (docs/references.md §4), in mm. The light quad lies in the ceiling
 // plane in the data; it is lowered by 0.8 mm so that it is a separate surface below it. The
 // non-planar left wall is split into two triangles by add_polygon (with a warning).
 Scene cornell(const BuiltinOptions& o) {
     Builder b;
-    // Reflectances: band means of the measured Cornell spectra (REFERENCES.md §4).
+    // Reflectances: band means of the measured Cornell spectra (docs/references.md §4).
     const double r = o.rho;
     const dvec3 white = r >= 0 ? dvec3(reflectance(o, 0)) : dvec3(0.734, 0.736, 0.698);
     const dvec3 red = r >= 0 ? dvec3(r) : dvec3(0.576, 0.083, 0.056);

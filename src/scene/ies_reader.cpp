@@ -15,6 +15,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/parse.h"
 #include "hemirad/error.h"
 #include "hemirad/photometry.h"
 
@@ -50,9 +51,10 @@ class Reader {
             throw InputError(path_, last_line_, "the file ends where " + what + " was expected");
         const Token& t = tokens_[next_++];
         line = t.line;
-        char* end = nullptr;
-        const double x = std::strtod(t.text.c_str(), &end);
-        if (end == t.text.c_str() || *end != '\0' || !std::isfinite(x))
+        double x = 0; // out of range: inf (refused) or 0, as strtod reads it
+        const char* b = t.text.data();
+        const NumberRead r = read_double(b, b + t.text.size(), x);
+        if (!r.found(b) || r.end != b + t.text.size() || !std::isfinite(x))
             throw InputError(path_, t.line, what + ": expected a number, got '" + t.text + "'");
         return x;
     }

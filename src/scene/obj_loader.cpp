@@ -34,7 +34,9 @@
 #include <map>
 #include <set>
 
+#include "core/geometry.h"
 #include "core/line_reader.h"
+#include "core/parse.h"
 #include "hemirad/error.h"
 #include "hemirad/scene_io.h"
 
@@ -151,13 +153,13 @@ std::vector<std::string> library_names(const std::string& s, std::size_t from) {
     return out;
 }
 
-/// Parses a whole token as a double; false if it is not a number at all. Accepts nan/inf
-/// (std::strtod does), which the callers reject with a message of their own.
-bool parse_double(const std::string& s, double& out) {
-    const char* b = s.c_str();
-    char* e = nullptr;
-    out = std::strtod(b, &e);
-    return e != b && *e == '\0';
+/// Parses a whole token as a double (core/parse.h); false if it is not a number at all.
+/// Accepts nan, inf and values out of range (read as inf or 0), which the callers reject with
+/// a message of their own.
+bool parse_token_double(const std::string& s, double& out) {
+    const char* b = s.data();
+    const NumberRead r = read_double(b, b + s.size(), out);
+    return r.found(b) && r.end == b + s.size();
 }
 
 /// Warnings collected while reading: one per kind, naming the first place and the count.
@@ -212,7 +214,7 @@ std::string map_file_name(const std::vector<std::string>& w, std::string& option
         // -o, -s, -t take 1 to 3 numbers.
         for (int k = 0; k < it->second && i + 1 < w.size(); ++k) {
             double x;
-            if (k > 0 && !parse_double(w[i], x)) break;
+            if (k > 0 && !parse_token_double(w[i], x)) break;
             ++i;
         }
     }
@@ -229,7 +231,7 @@ dvec3 parse_colour(const std::vector<std::string>& w, const std::string& file, i
     for (int k = 0; k < 3; ++k) {
         const std::string& t = w.size() == 2 ? w[1] : w[std::size_t(k) + 1];
         double x;
-        if (!parse_double(t, x))
+        if (!parse_token_double(t, x))
             throw InputError(file, line,
                              "cannot parse " + w[0] + " value '" + quoted_excerpt(t) + "'");
         if (!std::isfinite(x))
@@ -332,7 +334,7 @@ void read_mtl(const std::string& path, const ObjOptions& options,
         }
         if (key == "d" && w.size() > 1) {
             double d;
-            if (parse_double(w.back(), d) && d < 1)
+            if (parse_token_double(w.back(), d) && d < 1)
                 notes.add("mtl transparency", place,
                           "transparency (d " + w.back() + ") of material '" +
                               materials[current].m.name +
@@ -396,9 +398,9 @@ std::uint32_t face_corner(const std::string& token, long vertices, long texcoord
         const std::string idx = token.substr(start, slash - start);
         start = slash + 1;
         if (idx.empty() && part > 0) continue; // "v//n": no texture coordinate
-        char* e = nullptr;
-        const long i = std::strtol(idx.c_str(), &e, 10);
-        if (idx.empty() || *e != '\0' || i == 0)
+        long long i = 0;                       // out of range: the limit, which refers to no vertex
+        const NumberRead r = read_integer(idx.data(), idx.data() + idx.size(), i);
+        if (!r.found(idx.data()) || r.end != idx.data() + idx.size() || i == 0)
             throw InputError(file, line,
                              "cannot parse face " + std::string(what[part]) + " index '" +
                                  quoted_excerpt(token) + "'");
@@ -464,16 +466,6 @@ std::uint64_t hash_corners(const std::vector<dvec3>& c) {
     return h;
 }
 
-dvec3 newell_normal(const std::vector<dvec3>& c) {
-    dvec3 n(0.0);
-    for (std::size_t i = 0; i < c.size(); ++i) {
-        const dvec3& a = c[i];
-        const dvec3& b = c[(i + 1) % c.size()];
-        n += dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
-    }
-    return n;
-}
-
 } // namespace
 
 Scene load_obj(const std::string& path, const ObjOptions& options) {
@@ -512,7 +504,7 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
             dvec3 p;
             for (int k = 0; k < 3; ++k) {
                 const std::string& t = w[std::size_t(k) + 1];
-                if (!parse_double(t, p[k]))
+                if (!parse_token_double(t, p[k]))
                     throw InputError(path, line,
                                      "cannot parse vertex coordinate '" + quoted_excerpt(t) + "'");
                 if (!std::isfinite(p[k]))
@@ -524,7 +516,7 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
         } else if (key == "vt") {
             glm::dvec2 t(0.0);
             for (std::size_t k = 0; k < 2 && k + 1 < w.size(); ++k) {
-                if (!parse_double(w[k + 1], t[int(k)]) || !std::isfinite(t[int(k)]))
+                if (!parse_token_double(w[k + 1], t[int(k)]) || !std::isfinite(t[int(k)]))
                     throw InputError(path, line,
                                      "texture coordinate '" + quoted_excerpt(w[k + 1]) +
                                          "' is not a finite number");

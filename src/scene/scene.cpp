@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "core/geometry.h"
 #include "hemirad/error.h"
 
 namespace hemirad {
@@ -22,17 +23,6 @@ dvec3 Polygon::centroid() const {
 }
 
 namespace {
-
-// Newell's method: robust normal (unnormalised, length = 2 * area) of a planar polygon.
-dvec3 newell(const std::vector<dvec3>& c) {
-    dvec3 n(0.0);
-    for (std::size_t i = 0; i < c.size(); ++i) {
-        const dvec3& a = c[i];
-        const dvec3& b = c[(i + 1) % c.size()];
-        n += dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
-    }
-    return n;
-}
 
 /// Keeps Scene::texcoords parallel to the polygons once any polygon has coordinates: the
 /// polygon just added gets `uv` (or zeros).
@@ -118,7 +108,7 @@ AddResult add_polygon(Scene& s, const std::vector<dvec3>& corners, std::uint32_t
         r.degenerate = r.added == 0;
         return r;
     }
-    const dvec3 nn = newell(v);
+    const dvec3 nn = newell_normal(v);
     const double len = glm::length(nn);
     double scale = 0;
     for (int i = 0; i < 4; ++i) scale = std::max(scale, glm::length(v[(i + 1) % 4] - v[i]));

@@ -9,6 +9,7 @@
 
 #include <stb_image.h>
 
+#include "core/colour.h"
 #include "hemirad/error.h"
 
 namespace hemirad {
@@ -17,10 +18,6 @@ namespace {
 /// Most texels of an image read (texture.h, decode_texture).
 constexpr long long kMaxTexels = 4096LL * 4096LL;
 } // namespace
-
-double srgb_to_linear(double c) {
-    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
 
 glm::vec3 Texture::texel(int level, long x, long y) const {
     const Level& l = levels[std::size_t(level)];
@@ -118,13 +115,13 @@ Texture decode_texture(const std::string& name, const unsigned char* bytes, std:
         if (!data) throw fail();
         for (std::size_t i = 0; i < texels.size(); ++i)
             for (int k = 0; k < 3; ++k)
-                texels[i][k] = float(srgb_to_linear(data.get()[3 * i + std::size_t(k)] / 65535.0));
+                texels[i][k] = float(srgb_decode(data.get()[3 * i + std::size_t(k)] / 65535.0));
     } else {
         std::unique_ptr<stbi_uc, void (*)(void*)> data(
             stbi_load_from_memory(bytes, len, &w, &h, &comp, 3), stbi_image_free);
         if (!data) throw fail();
         float table[256];
-        for (int v = 0; v < 256; ++v) table[v] = float(srgb_to_linear(v / 255.0));
+        for (int v = 0; v < 256; ++v) table[v] = float(srgb_decode(v / 255.0));
         for (std::size_t i = 0; i < texels.size(); ++i)
             for (int k = 0; k < 3; ++k) texels[i][k] = table[data.get()[3 * i + std::size_t(k)]];
     }

@@ -2,10 +2,9 @@
 #include "hemirad/gather.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <thread>
 
+#include "core/parallel.h"
 #include "core/sampling.h"
 #include "ff/bvh.h"
 #include "hemirad/error.h"
@@ -187,17 +186,10 @@ dvec3 FinalGather::direct_at(const GatherPoint& q, std::uint64_t index) const {
 
 std::vector<GatherValue> FinalGather::at(const std::vector<GatherPoint>& points) const {
     std::vector<GatherValue> out(points.size());
-    unsigned threads = options_.threads > 0 ? unsigned(options_.threads)
-                                            : std::max(1u, std::thread::hardware_concurrency());
-    threads = unsigned(std::min<std::size_t>(threads, std::max<std::size_t>(1, points.size() / 8)));
-    std::atomic<std::size_t> next{0};
-    const auto work = [&] {
-        for (std::size_t k; (k = next.fetch_add(1)) < points.size();) out[k] = at(points[k], k);
-    };
-    std::vector<std::thread> pool;
-    for (unsigned i = 1; i < threads; ++i) pool.emplace_back(work);
-    work();
-    for (std::thread& th : pool) th.join();
+    // At least 8 points a thread: fewer are not worth a thread's start.
+    const unsigned threads = unsigned(std::min<std::size_t>(
+        thread_count(options_.threads), std::max<std::size_t>(1, points.size() / 8)));
+    parallel_for(points.size(), int(threads), [&](std::size_t k) { out[k] = at(points[k], k); });
     return out;
 }
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/parse.h"
 #include "hemirad/error.h"
 #include "hemirad/image.h"
 #include "hemirad/readout.h"
@@ -21,7 +22,7 @@ double lum(const dvec3& E) {
 int parse_count(const std::string& s, const std::string& text) {
     if (s.empty() || s.size() > 6 || s.find_first_not_of("0123456789") != std::string::npos)
         throw InputError("--grid '" + text + "': expected GROUP:NXxNY, e.g. floor:20x10");
-    const int n = std::stoi(s);
+    const int n = int(*parse_integer(s)); // at most 6 digits: always one
     if (n < 1 || n > 10000)
         throw InputError("--grid '" + text + "': " + s + " points must be in 1..10000");
     return n;

@@ -3,13 +3,12 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <string>
 
+#include "core/parse.h"
 #include "hemirad/error.h"
 #include "hemirad/hierarchy.h"
 #include "hemirad/provider.h"
@@ -28,8 +27,11 @@ std::uint64_t meminfo(const char* key) {
     std::string line;
     const std::string k = std::string(key) + ":";
     while (std::getline(in, line))
-        if (line.rfind(k, 0) == 0)
-            return std::strtoull(line.c_str() + k.size(), nullptr, 10) * 1024;
+        if (line.rfind(k, 0) == 0) {
+            unsigned long long kib = 0; // "MemAvailable:   16384 kB"
+            read_unsigned(line.data() + k.size(), line.data() + line.size(), kib);
+            return kib * 1024;
+        }
     return 0;
 }
 
@@ -39,7 +41,9 @@ std::uint64_t read_number(const char* path, bool& ok) {
     std::ifstream in(path);
     std::string s;
     ok = bool(in >> s) && !s.empty() && std::isdigit(static_cast<unsigned char>(s[0]));
-    return ok ? std::strtoull(s.c_str(), nullptr, 10) : 0;
+    unsigned long long v = 0;
+    if (ok) read_unsigned(s.data(), s.data() + s.size(), v);
+    return v;
 }
 
 } // namespace
@@ -110,14 +114,13 @@ std::uint64_t parse_memory_size(const std::string& text, const std::string& opti
                           "the memory available)");
     };
     if (text.empty() || text.size() > 64) throw bad();
-    const char* b = text.c_str();
-    char* e = nullptr;
-    errno = 0;
-    const double x = std::strtod(b, &e);
-    if (e == b || errno == ERANGE || !std::isfinite(x) || x < 0 ||
+    const char* b = text.data();
+    double x = 0;
+    const NumberRead r = read_double(b, b + text.size(), x);
+    if (!r.found(b) || r.range_error || !std::isfinite(x) || x < 0 ||
         !std::isdigit(static_cast<unsigned char>(*b)))
         throw bad();
-    std::string unit(e);
+    std::string unit(r.end, b + text.size());
     for (char& c : unit) c = char(std::toupper(static_cast<unsigned char>(c)));
     double scale = 1;
     if (!unit.empty() && unit != "B") {

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "hemirad/error.h"
+#include "hemirad/solver_options.h"
 #include "output/atomic_file.h"
 
 namespace hemirad {
@@ -118,12 +119,6 @@ class Reader {
     const std::string& path_;
 };
 
-std::string hex(double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%a", v);
-    return buf;
-}
-
 std::string hash_text(std::uint64_t h) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%016" PRIx64, h);
@@ -133,119 +128,22 @@ std::string hash_text(std::uint64_t h) {
 } // namespace
 
 std::vector<SolutionOption> solution_options(const SolverOptions& o) {
-    const auto b = [](bool v) { return std::string(v ? "1" : "0"); };
-    const GpuProviderOptions& g = o.provider.gpu;
-    const CpuProviderOptions& c = o.provider.cpu;
-    return {
-        {"--ff", o.ff},
-        {"--patch-size", hex(o.hierarchy.patch_size)},
-        {"--max-depth", std::to_string(o.hierarchy.max_depth)},
-        {"--shooter-power", hex(o.shooter_power_fraction)},
-        {"--shooter-size", hex(o.shooter_min_size)},
-        {"--shooter-max-size", hex(o.shooter_max_size)},
-        {"--flat", b(o.flat)},
-        {"--no-row-guard", b(!o.row_guard)}, // the command line's spelling of the switch
-        {"--enclosed-fraction", hex(o.enclosed_fraction)},
-        {"--shooter-parallax", hex(o.shooter_parallax)},
-        {"--clusters", o.clusters},
-        {"--resolution", std::to_string(g.resolution)},
-        {"--min-resolution", std::to_string(g.min_resolution)},
-        {"--max-resolution", std::to_string(g.max_resolution)},
-        {"--lod-bias", hex(g.lod_bias)},
-        {"--builtin-acos", b(g.builtin_acos)},
-        {"--atan-angle", b(g.atan_angle)},
-        {"--link-angle", hex(c.link_angle)},
-        {"--visibility-samples", std::to_string(c.visibility_samples)},
-        {"--gauss-order", std::to_string(c.gauss_order)},
-        {"--sr-rays", std::to_string(c.sr_rays)},
-        {"--sr-points", std::to_string(c.sr_points)},
-        {"--seed", std::to_string(c.seed)},
-    };
+    std::vector<SolutionOption> out;
+    for (const SolverOption& opt : solver_option_table())
+        if (opt.saved) out.emplace_back(opt.flag, opt.text(o));
+    return out;
 }
 
 void apply_solution_option(SolverOptions& o, const SolutionOption& option,
                            const std::string& file) {
     const std::string& name = option.first;
-    const std::string& text = option.second;
-    const auto bad = [&]() {
-        return InputError(file, 0,
-                          "saved option " + name + " has a malformed value '" + text + "'");
-    };
-    const auto dbl = [&](double& out) {
-        char* end = nullptr;
-        const double v = std::strtod(text.c_str(), &end);
-        if (text.empty() || *end != '\0' || !std::isfinite(v)) throw bad();
-        out = v;
-    };
-    const auto integer = [&](auto& out) {
-        char* end = nullptr;
-        const long long v = std::strtoll(text.c_str(), &end, 10);
-        if (text.empty() || *end != '\0') throw bad();
-        out = static_cast<std::remove_reference_t<decltype(out)>>(v);
-    };
-    const auto boolean = [&](bool& out) {
-        if (text != "0" && text != "1") throw bad();
-        out = text == "1";
-    };
-    GpuProviderOptions& g = o.provider.gpu;
-    CpuProviderOptions& c = o.provider.cpu;
-    if (name == "--ff")
-        o.ff = text;
-    else if (name == "--patch-size")
-        dbl(o.hierarchy.patch_size);
-    else if (name == "--max-depth")
-        integer(o.hierarchy.max_depth);
-    else if (name == "--shooter-power")
-        dbl(o.shooter_power_fraction);
-    else if (name == "--shooter-size")
-        dbl(o.shooter_min_size);
-    else if (name == "--shooter-max-size")
-        dbl(o.shooter_max_size);
-    else if (name == "--flat")
-        boolean(o.flat);
-    else if (name == "--no-row-guard") {
-        bool off = false;
-        boolean(off);
-        o.row_guard = !off;
-    } else if (name == "--enclosed-fraction")
-        dbl(o.enclosed_fraction);
-    else if (name == "--shooter-parallax")
-        dbl(o.shooter_parallax);
-    else if (name == "--clusters") {
-        if (text != "auto" && text != "on" && text != "off") throw bad();
-        o.clusters = text;
-    } else if (name == "--resolution")
-        integer(g.resolution);
-    else if (name == "--min-resolution")
-        integer(g.min_resolution);
-    else if (name == "--max-resolution")
-        integer(g.max_resolution);
-    else if (name == "--lod-bias")
-        dbl(g.lod_bias);
-    else if (name == "--builtin-acos")
-        boolean(g.builtin_acos);
-    else if (name == "--atan-angle")
-        boolean(g.atan_angle);
-    else if (name == "--link-angle")
-        dbl(c.link_angle);
-    else if (name == "--visibility-samples")
-        integer(c.visibility_samples);
-    else if (name == "--gauss-order")
-        integer(c.gauss_order);
-    else if (name == "--sr-rays")
-        integer(c.sr_rays);
-    else if (name == "--sr-points")
-        integer(c.sr_points);
-    else if (name == "--seed") {
-        char* end = nullptr;
-        const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-        if (text.empty() || *end != '\0') throw bad();
-        c.seed = v;
-    } else
+    const SolverOption* opt = find_solver_option(name);
+    if (!opt || name != opt->flag || !opt->saved)
         throw InputError(file, 0,
-                         "unknown saved option '" + name +
-                             "' (saved by a newer "
-                             "hemirad?)");
+                         "unknown saved option '" + name + "' (saved by a newer hemirad?)");
+    if (!opt->set_text(o, option.second))
+        throw InputError(file, 0,
+                         "saved option " + name + " has a malformed value '" + option.second + "'");
 }
 
 std::string solution_bytes(const Solver& solver) {

@@ -8,6 +8,7 @@
 
 #include "hemirad/error.h"
 #include "hemirad/memory_guard.h"
+#include "hemirad/solver_options.h"
 #include "solver/cluster_tree.h"
 #include "solver/solver_detail.h"
 
@@ -18,28 +19,7 @@ using solver_detail::since;
 using solver_detail::sum;
 
 void validate_options(const SolverOptions& o) {
-    if (!(o.tolerance > 0 && o.tolerance < 1))
-        throw InputError("--tolerance " + num(o.tolerance) + " must be in (0, 1)");
-    if (o.max_shots < 0)
-        throw InputError("--max-shots " + std::to_string(o.max_shots) + " must be >= 0");
-    if (!(o.time_limit >= 0))
-        throw InputError("--time-limit " + num(o.time_limit) + " must be >= 0");
-    if (!(o.shooter_power_fraction > 0 && o.shooter_power_fraction <= 1))
-        throw InputError("--shooter-power " + num(o.shooter_power_fraction) + " must be in (0, 1]");
-    if (!(o.shooter_max_size >= 0))
-        throw InputError("--shooter-max-size " + num(o.shooter_max_size) + " must be >= 0");
-    if (!(o.shooter_min_size >= 0))
-        throw InputError("--shooter-size " + num(o.shooter_min_size) + " must be >= 0");
-    if (!(o.shooter_parallax >= 0) || std::isinf(o.shooter_parallax))
-        throw InputError("--shooter-parallax " + num(o.shooter_parallax) +
-                         " must be >= 0 (0 = never refine for parallax)");
-    if (!(o.enclosed_fraction > 0 && o.enclosed_fraction <= 1))
-        throw InputError("--enclosed-fraction " + num(o.enclosed_fraction) + " must be in (0, 1]");
-    if (o.hierarchy.max_depth < 0 || o.hierarchy.max_depth > kMaxDepth)
-        throw InputError("--max-depth " + std::to_string(o.hierarchy.max_depth) +
-                         " must be in 0.." + std::to_string(kMaxDepth));
-    if (o.clusters != "auto" && o.clusters != "on" && o.clusters != "off")
-        throw InputError("--clusters '" + o.clusters + "' must be auto, on or off");
+    validate_solver_options(o, SolverOption::Check::Solver); // the ranges: solver_options.h
     if (is_gpu_provider(o.ff)) validate_gpu_options(o.provider.gpu);
 }
 

@@ -2,18 +2,14 @@
 // Internal header.
 #pragma once
 
-#include <chrono>
-
 #include <glm/glm.hpp>
+
+#include "core/timer.h"
 
 namespace hemirad::solver_detail {
 
-using Clock = std::chrono::steady_clock;
-
-/// Seconds since t0.
-inline double since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using Clock = SteadyClock;
+constexpr auto since = &seconds_since; ///< seconds since a time point (core/timer.h)
 
 /// Sum of the RGB channels (a power or radiosity summed over the spectrum).
 inline double sum(const glm::dvec3& v) {

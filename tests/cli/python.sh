@@ -3,7 +3,8 @@
 # its irradiance at points equals `hemirad solve --probes` for the same points and options
 # (the final gather is seeded per point: deterministic; the CSV keeps 9 digits, hence 1e-7);
 # group statistics, the shot log and the progress callback agree with each other and with the
-# report; bad input raises a Python exception carrying hemirad's message.
+# report; bad input raises a Python exception carrying hemirad's message; every option of the
+# options table is a keyword of hemirad.Solver.
 set -euo pipefail
 HEMIRAD="$1"
 export PYTHONPATH="$(dirname "$HEMIRAD")/python"
@@ -73,5 +74,32 @@ raises(ValueError, ["not finite"],
        lambda: s.irradiance(np.full((1, 3), np.nan), np.array([[0.0, 1.0, 0.0]])))
 raises(ValueError, ["--gather-rays"],
        lambda: s.irradiance(rows[:1, 0:3], rows[:1, 3:6], gather_rays=1))
-print("python: ok,", s.shots, "shots, max relative difference to the CLI", err)
+# Every solver option by its key (the options table, hemirad/solver_options.h): each one set
+# alone to another value comes back, and leaves the others at their defaults.
+table = hemirad.solver_option_table()
+keys = [o["key"] for o in table]
+assert "shooter_parallax" in keys and len(keys) == len(set(keys)) >= 28, keys
+defaults = hemirad.solver_options()
+assert list(defaults) == keys, (list(defaults), keys)
+for o in table:
+    d = o["default"]
+    if isinstance(d, bool):
+        v = not d
+    elif isinstance(d, int):
+        v = d + 3
+    elif isinstance(d, float):
+        v = d * 0.5 + 0.125
+    else:
+        v = "sr" if d == "pdm" else "pdm"
+    got = hemirad.solver_options(**{o["key"]: v})
+    assert got[o["key"]] == v, (o["key"], got[o["key"]], v)
+    assert all(got[k] == defaults[k] for k in keys if k != o["key"]), o["key"]
+s3 = hemirad.Solver(scene, shooter_parallax=1e-3, max_shots=3)
+assert s3.options["shooter_parallax"] == 1e-3 and s3.solve() == "max-shots" and s3.shots == 3
+assert hemirad.Solver(scene, memory_limit="4G", max_shots=1).options["memory_limit"] == 4 << 30
+raises(TypeError, ["no_such_option"], lambda: hemirad.Solver(scene, no_such_option=1))
+raises(TypeError, ["max_shots"], lambda: hemirad.Solver(scene, max_shots=1.5))
+raises(ValueError, ["--shooter-parallax"], lambda: hemirad.Solver(scene, shooter_parallax=-1))
+print("python: ok,", s.shots, "shots, max relative difference to the CLI", err,
+      ";", len(keys), "options by keyword")
 PY

@@ -2,7 +2,7 @@
 // its text:
 //   0  --camera E,T,U,FOV (parse_camera, src/render/solution_renderer.cpp)
 //   1  --grid GROUP:NXxNY (parse_grid_spec, src/solver/grid.cpp)
-//   2  a command line (ArgParser, src/core/args.cpp, with hemirad solve's solver, scene and
+//   2  a command line (ArgParser, tools/common/cli/args.cpp, with hemirad solve's solver, scene and
 //      --memory-limit options): the text split at NUL bytes into arguments (--help and -h
 //      left out: they print the help and parse nothing)
 //   3  --memory-limit SIZE (parse_memory_size, src/solver/memory_guard.cpp)

@@ -25,6 +25,7 @@
 #include <glad/gl.h>
 
 #include "cli/args.h"
+#include "core/timer.h"
 #include "hemirad/error.h"
 #include "hemirad/gather.h"
 #include "hemirad/gl/context.h"
@@ -52,10 +53,8 @@ using namespace hemirad;
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) {
-    return std::chrono::duration<double>(Clock::now() - t).count();
-}
+using Clock = SteadyClock;             // core/timer.h
+constexpr auto since = &seconds_since; // [s]
 
 // Peak resident set of this process [MiB] (VmHWM; ru_maxrss as the fallback).
 double peak_rss_mib() {

@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/timer.h"
 #include "hemirad/error.h"
 #include "hemirad/json.h"
 #include "parallel/world.h"
@@ -56,10 +57,6 @@ nlohmann::json solve(const std::string& hemirad, int ranks, const fs::path& dir)
     return nlohmann::json::parse(f);
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 /// Under mpirun (HEMIRAD_BENCH_MPI_PROBE=SPARSE:DENSE, bytes a round): the exchange alone, no
 /// solve competing for the cores: the sparse all-gather (each rank SPARSE / ranks bytes) and
 /// the dense sum of DENSE / 4 floats (reduce on rank 0 + broadcast), the median of 200 each.
@@ -79,7 +76,7 @@ void run_probe(const char* spec) {
         std::vector<double> ms;
         for (int i = 0; i < 200; ++i) {
             world.barrier();
-            const auto t0 = std::chrono::steady_clock::now();
+            const auto t0 = SteadyClock::now();
             exchange();
             ms.push_back(1e3 * seconds_since(t0));
         }

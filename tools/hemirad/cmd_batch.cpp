@@ -10,6 +10,7 @@
 
 #include "cli/cli_options.h"
 #include "commands.h"
+#include "core/timer.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/json.h"
@@ -57,10 +58,7 @@ SceneResult solve_one(const std::string& scene_name, const fs::path& dir, const 
     j["scene"] = scene_name;
     j["folder"] = dir.filename().string();
     SceneResult r;
-    const auto t0 = std::chrono::steady_clock::now();
-    const auto seconds = [&] {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    };
+    const Stopwatch timer;
     char row[512];
     try {
         const Scene scene = load_scene(scene_name, builtin, obj);
@@ -82,7 +80,7 @@ SceneResult solve_one(const std::string& scene_name, const fs::path& dir, const 
         r.failed = stopped;
         std::snprintf(row, sizeof row, "%-24s %-12s %7ld shots  bound %.3e  %8.2f s",
                       dir.filename().string().c_str(), status.c_str(), solver.shots(),
-                      solver.error_bound(), seconds());
+                      solver.error_bound(), timer.seconds());
     } catch (const std::exception& e) {
         j["status"] = "error";
         j["error"] = e.what();
@@ -90,7 +88,7 @@ SceneResult solve_one(const std::string& scene_name, const fs::path& dir, const 
         std::snprintf(row, sizeof row, "%-24s error: %s", dir.filename().string().c_str(),
                       e.what());
     }
-    j["seconds"] = seconds();
+    j["seconds"] = timer.seconds();
     r.row = row;
     r.json = j.dump(0);
     return r;
@@ -187,7 +185,7 @@ int cmd_batch(int argc, char** argv) {
     if (!quiet_here)
         std::fprintf(stderr, "hemirad: batch of %zu scenes on %d rank%s into %s\n", scenes.size(),
                      world.size(), world.size() > 1 ? "s" : "", out.c_str());
-    const auto t0 = std::chrono::steady_clock::now();
+    const Stopwatch timer;
     std::vector<std::uint8_t> mine;
     for (std::size_t i = std::size_t(world.rank()); i < scenes.size();
          i += std::size_t(world.size())) {
@@ -223,8 +221,7 @@ int cmd_batch(int argc, char** argv) {
     int failed = 0;
     char head[160];
     std::snprintf(head, sizeof head, "{\n  \"ranks\": %d,\n  \"seconds\": %.6g,\n  \"scenes\": [\n",
-                  world.size(),
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+                  world.size(), timer.seconds());
     std::string text = head;
     for (const auto& [index, r] : results) {
         failed += r.failed ? 1 : 0;
@@ -240,9 +237,7 @@ int cmd_batch(int argc, char** argv) {
                          r.row.c_str());
     if (!quiet)
         std::fprintf(stderr, "hemirad: %zu scenes, %d failed, %.2f s; wrote %s\n", scenes.size(),
-                     failed,
-                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
-                     path.c_str());
+                     failed, timer.seconds(), path.c_str());
     if (interrupted()) return 130;
     return failed ? 1 : 0;
 }

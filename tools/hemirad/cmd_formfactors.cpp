@@ -2,20 +2,21 @@
 #include <cstdio>
 #include <iostream>
 
+#include "cli/cli_options.h"
 #include "commands.h"
 #include "hemirad/error.h"
 #include "hemirad/hierarchy.h"
 #include "hemirad/json.h"
 #include "hemirad/provider.h"
+#include "hemirad/solver.h"
 
 namespace hemirad::cli {
 
 int cmd_formfactors(int argc, char** argv) {
-    std::string scene_name, from, ff = "hybrid";
+    std::string scene_name, from;
     bool json = false, leaves = false;
-    HierarchyOptions ho;
-    ho.max_depth = 0;
-    ProviderOptions po;
+    SolverOptions so; // the options this command shares with hemirad solve, from its table
+    so.hierarchy.max_depth = 0;
     BuiltinOptions builtin;
     ObjOptions obj;
     ArgParser args("hemirad formfactors", "hemirad formfactors SCENE --from GROUP [options]",
@@ -24,22 +25,21 @@ int cmd_formfactors(int argc, char** argv) {
                    "A_s F(s -> G) / A_GROUP, and the row sum (1 in a closed scene).");
     args.positional("SCENE", &scene_name, "OBJ or glTF file, SCENE.json or built-in scene");
     args.option("--from", &from, "GROUP", "the shooting surface group");
-    args.option("--ff", &ff, "METHOD", "hybrid, analytic, hemicube, reference, pdm, sr");
-    args.option("--max-depth", &ho.max_depth, "D", "receiver and shooter quadtree depth (0..11)");
-    args.option("--patch-size", &ho.patch_size, "S", "leaf patch size (0 = diagonal / 64)");
+    add_solver_option(args, so, "--ff");
+    add_solver_option(args, so, "--max-depth", "receiver and shooter quadtree depth (0..11)");
+    add_solver_option(args, so, "--patch-size");
     args.flag("--leaves", &leaves, "link receivers at their leaves (no adaptive linking)");
-    args.option("--resolution", &po.gpu.resolution, "N", "GPU: hemicube resolution (0 = 512)");
-    args.option("--lod-bias", &po.gpu.lod_bias, "B", "GPU: mip LOD bias");
-    args.flag("--builtin-acos", &po.gpu.builtin_acos, "GPU: GLSL acos instead of the table");
-    args.flag("--atan-angle", &po.gpu.atan_angle, "GPU: GLSL atan(|a x b|, a.b) for angles");
-    args.option("--backend", &po.gpu.backend, "NAME", "GL backend: auto, egl, osmesa");
-    args.option("--sr-rays", &po.cpu.sr_rays, "N", "sr: rays per sample point");
-    args.option("--sr-points", &po.cpu.sr_points, "N", "sr: sample points per shooter");
-    args.option("--gauss-order", &po.cpu.gauss_order, "N", "pdm: Gauss-Legendre order");
+    add_solver_option(args, so, "--resolution", "GPU: hemicube resolution (0 = 512)");
+    for (const char* flag : {"--lod-bias", "--builtin-acos", "--atan-angle", "--backend",
+                             "--sr-rays", "--sr-points", "--gauss-order"})
+        add_solver_option(args, so, flag);
     args.flag("--json", &json, "print JSON");
     add_scene_options(args, builtin, obj);
     if (!args.parse(argc, argv, 2)) return 0;
     if (from.empty()) throw InputError("--from GROUP is required");
+    ProviderOptions& po = so.provider;
+    const HierarchyOptions& ho = so.hierarchy;
+    const std::string& ff = so.ff;
     if (po.gpu.resolution == 0) po.gpu.resolution = 512;
 
     const Scene scene = load_scene(scene_name, builtin, obj);

@@ -7,6 +7,8 @@
 #include <thread>
 
 #include "commands.h"
+#include "core/parallel.h"
+#include "core/timer.h"
 #include "hemirad/error.h"
 #include "hemirad/reference.h"
 
@@ -54,23 +56,19 @@ int cmd_reference(int argc, char** argv) {
     const Scene scene = load_scene(scene_name, builtin, obj);
     print_warnings(scene, quiet);
     const std::vector<Probe> probes = read_probes(probes_in);
-    const unsigned threads =
-        ro.threads > 0 ? unsigned(ro.threads) : std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads = thread_count(ro.threads);
     if (!quiet)
         std::fprintf(stderr, "hemirad: %s: %zu polygons, %zu points x %ld samples, %u threads\n",
                      scene.source.c_str(), scene.polygons.size(), probes.size(), ro.samples,
                      threads);
 
     const bool tty = isatty(2) && !quiet;
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = SteadyClock::now();
     auto last_print = start;
-    const auto seconds_since = [](std::chrono::steady_clock::time_point t) {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-    };
     ReferenceProgress progress;
     if (tty)
         progress = [&](std::size_t done, std::size_t total) {
-            const auto now = std::chrono::steady_clock::now();
+            const auto now = SteadyClock::now();
             if (now - last_print < std::chrono::milliseconds(250)) return;
             last_print = now;
             std::fprintf(stderr, "\rpoint %zu / %zu  %.1f s   ", done, total, seconds_since(start));

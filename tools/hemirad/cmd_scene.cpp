@@ -10,11 +10,6 @@
 
 namespace hemirad::cli {
 
-void add_scene_options(ArgParser& args, BuiltinOptions& o, ObjOptions& obj) {
-    add_builtin_scene_options(args, o);
-    add_obj_scene_options(args, obj);
-}
-
 void print_warnings(const Scene& scene, bool quiet) {
     print_scene_warnings("hemirad", scene, quiet);
 }

@@ -10,6 +10,7 @@
 
 #include "cli/cli_options.h"
 #include "commands.h"
+#include "core/timer.h"
 #include "export_outputs.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
@@ -185,7 +186,7 @@ int cmd_solve(int argc, char** argv) {
         if (!log_file) throw RuntimeError("cannot write " + log);
     }
     const bool tty = isatty(2) && !quiet;
-    auto last_print = std::chrono::steady_clock::now();
+    auto last_print = SteadyClock::now();
     // A signal on any rank stops every rank at the same round.
     const auto signalled = [&] {
         return world.size() > 1 ? world.any(interrupted()) : interrupted();
@@ -197,7 +198,7 @@ int cmd_solve(int argc, char** argv) {
                 log_file << shot_json(s).dump(0) << "\n";
             log_file << std::flush;
         }
-        const auto now = std::chrono::steady_clock::now();
+        const auto now = SteadyClock::now();
         if (tty && now - last_print > std::chrono::milliseconds(250)) {
             std::fprintf(stderr, "\rshot %ld  unshot %.3e  error bound %.3e / %.3g  %.1f s   ",
                          r.shot, r.unshot_fraction, r.error_bound, so.tolerance, solver.seconds());
@@ -239,15 +240,14 @@ int cmd_solve(int argc, char** argv) {
     // Point read-outs: by final gather unless --gather off.
     std::unique_ptr<FinalGather> gather;
     if (!grid_specs.empty() || !probes.empty()) gather = make_gather(exports, h);
-    const auto t_points = std::chrono::steady_clock::now();
+    const Stopwatch points_timer;
     const std::vector<GridResult> grids = evaluate_grids(grid_specs, h, gather.get(), quiet);
     std::string probe_text;
     if (!probes_out.empty()) probe_text = probes_csv(probes, h, gather.get());
     if (gather && !quiet) {
         std::size_t points = probes.size();
         for (const GridResult& g : grids) points += std::size_t(g.evaluated);
-        const double s =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t_points).count();
+        const double s = points_timer.seconds();
         std::fprintf(stderr, "hemirad: final gather at %zu points in %.2f s (%.2f ms a point)\n",
                      points, s, points ? 1e3 * s / double(points) : 0.0);
     }

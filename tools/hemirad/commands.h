@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cli/args.h"
+#include "cli/cli_options.h"
 #include "hemirad/scene_io.h"
 
 namespace hemirad::cli {
@@ -14,9 +15,6 @@ int cmd_solve(int argc, char** argv);
 int cmd_batch(int argc, char** argv);
 int cmd_formfactors(int argc, char** argv);
 int cmd_reference(int argc, char** argv);
-
-/// Options that select and shape a scene (built-in scenes' parameters, OBJ/MTL reading).
-void add_scene_options(ArgParser& args, BuiltinOptions& o, ObjOptions& obj);
 
 /// Prints "hemirad: warning: ..." for each scene warning unless quiet.
 void print_warnings(const Scene& scene, bool quiet);

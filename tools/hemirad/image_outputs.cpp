@@ -7,11 +7,12 @@
 #include <optional>
 #include <vector>
 
+#include "core/parse.h"
+#include "hemirad/draw.h"
 #include "hemirad/error.h"
 #include "hemirad/image.h"
 #include "hemirad/photometry.h"
 #include "hemirad/render.h"
-#include "output/draw.h"
 
 namespace hemirad::cli {
 
@@ -36,9 +37,9 @@ std::pair<bool, double> parse_exposure(const std::string& text) {
         if (rest.empty()) return {true, 0.0};
         if (rest[0] == '+') rest = rest.substr(1);
     }
-    char* end = nullptr;
-    const double stops = std::strtod(rest.c_str(), &end);
-    if (rest.empty() || end != rest.c_str() + rest.size() || !std::isfinite(stops))
+    double stops = 0;
+    const NumberRead r = read_double(rest.data(), rest.data() + rest.size(), stops);
+    if (rest.empty() || r.end != rest.data() + rest.size() || !std::isfinite(stops))
         throw InputError("--exposure '" + text +
                          "': expected auto, auto+S, auto-S or a number of stops S");
     return {automatic, stops};

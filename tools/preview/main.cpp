@@ -16,8 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "../../src/output/draw.h"
 #include "cli/cli_options.h"
+#include "cli/tool_main.h"
+#include "hemirad/draw.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/image.h"
@@ -256,10 +257,7 @@ int run(int argc, char** argv) {
     args.option("--sheet-columns", &o.sheet_columns, "N", "columns of the contact sheet");
     args.flag("--quiet", &o.quiet, "print nothing but errors");
     add_solver_options(args, so);
-    args.option("--backend", &so.provider.gpu.backend, "NAME", "GL backend: auto, egl, osmesa");
-    args.option("--device", &so.provider.gpu.device, "N", "EGL device index (-1 = default)");
-    add_builtin_scene_options(args, builtin);
-    add_obj_scene_options(args, obj);
+    add_scene_options(args, builtin, obj);
     if (!args.parse(argc, argv)) return 0;
     validate(o, args);
     // Parse everything the user gave before any slow work.
@@ -361,13 +359,5 @@ int run(int argc, char** argv) {
 } // namespace hemirad::tool
 
 int main(int argc, char** argv) {
-    try {
-        return hemirad::tool::run(argc, argv);
-    } catch (const hemirad::InputError& e) {
-        std::fprintf(stderr, "%s: %s\n", hemirad::tool::kTool, e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "%s: %s\n", hemirad::tool::kTool, e.what());
-        return 1;
-    }
+    return hemirad::run_tool(hemirad::tool::kTool, [&] { return hemirad::tool::run(argc, argv); });
 }

@@ -18,8 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "../../src/output/draw.h"
 #include "cli/cli_options.h"
+#include "cli/tool_main.h"
+#include "hemirad/draw.h"
 #include "hemirad/error.h"
 #include "hemirad/image.h"
 #include "hemirad/render.h"
@@ -376,8 +377,7 @@ int run(int argc, char** argv) {
     args.option("--frames", &o.frames, "K", "... at frame K (without --screenshot: exit)");
     args.flag("--quiet", &o.quiet, "print nothing but errors");
     add_solver_options(args, so);
-    add_builtin_scene_options(args, builtin);
-    add_obj_scene_options(args, obj);
+    add_scene_options(args, builtin, obj);
     if (!args.parse(argc, argv)) return 0;
     validate(o, args);
     std::optional<Camera> user_camera;
@@ -626,13 +626,5 @@ int run(int argc, char** argv) {
 } // namespace hemirad::view
 
 int main(int argc, char** argv) {
-    try {
-        return hemirad::view::run(argc, argv);
-    } catch (const hemirad::InputError& e) {
-        std::fprintf(stderr, "%s: %s\n", hemirad::view::kTool, e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "%s: %s\n", hemirad::view::kTool, e.what());
-        return 1;
-    }
+    return hemirad::run_tool(hemirad::view::kTool, [&] { return hemirad::view::run(argc, argv); });
 }

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "../../src/output/draw.h"
+#include "hemirad/draw.h"
 
 namespace hemirad::view {
 

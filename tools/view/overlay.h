@@ -1,11 +1,11 @@
 // On-screen text and legends for the viewer: panels drawn on the CPU into an Image8 (with the
-// bitmap font of src/output/draw.h), uploaded to a texture and blitted into the default
+// bitmap font of hemirad/draw.h), uploaded to a texture and blitted into the default
 // framebuffer. A blit needs no shader and leaves no GL state changed; panels are opaque.
 #pragma once
 
 #include <string>
 
-#include "../../src/gl/objects.h"
+#include "gl/objects.h"
 #include "hemirad/image.h"
 
 namespace hemirad::view {

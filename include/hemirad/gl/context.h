@@ -1,4 +1,4 @@
-// A headless OpenGL 4.5 core context (DESIGN.md "Headless GL"): EGL surfaceless (or an
+// A headless OpenGL 4.5 core context (docs/design.md, "Headless GL"): EGL surfaceless (or an
 // enumerated EGL device), with OSMesa as the fallback. One small platform class per backend
 // behind this interface; no GL or EGL types here.
 //
@@ -9,6 +9,8 @@
 #include <memory>
 #include <string>
 #include <vector>
+
+#include "hemirad/visibility.h"
 
 namespace hemirad::gl {
 
@@ -24,7 +26,7 @@ struct ContextOptions {
     bool debug = false; ///< GL debug output to stderr; always on in HEMIRAD_GL_DEBUG builds
 };
 
-class Context {
+class HEMIRAD_API Context {
   public:
     /// Creates a GL >= 4.5 core context and makes it current on this thread. Throws
     /// hemirad::RuntimeError naming the call that failed (for Auto: both backends' reasons
@@ -63,6 +65,6 @@ class Context {
 };
 
 /// "auto", "egl" or "osmesa"; anything else throws hemirad::InputError naming the value.
-Backend parse_backend(const std::string& name);
+HEMIRAD_API Backend parse_backend(const std::string& name);
 
 } // namespace hemirad::gl

@@ -1,13 +1,13 @@
 #include "cli/args.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <climits>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
+#include <optional>
 #include <sstream>
 
+#include "core/parse.h"
 #include "hemirad/error.h"
 
 namespace hemirad {
@@ -15,13 +15,10 @@ namespace hemirad {
 namespace {
 
 // A whole decimal integer in [lo, hi], else InputError naming the option and the value.
-long parse_integer(const std::string& name, const std::string& v, long lo, long hi) {
-    char* end = nullptr;
-    errno = 0;
-    const long x = std::strtol(v.c_str(), &end, 10);
-    if (v.empty() || *end != '\0' || errno == ERANGE || x < lo || x > hi)
-        throw InputError(name + ": '" + v + "' is not an integer");
-    return x;
+long integer_value(const std::string& name, const std::string& v, long lo, long hi) {
+    const std::optional<long long> x = parse_integer(v);
+    if (!x || *x < lo || *x > hi) throw InputError(name + ": '" + v + "' is not an integer");
+    return long(*x);
 }
 
 std::string shortest(double x) {
@@ -71,12 +68,10 @@ void ArgParser::option(const std::string& name, double* out, const std::string& 
                        const std::string& help) {
     Opt o{name, metavar, help, shortest(*out), nullptr};
     o.set = [out, name](const std::string& v) {
-        char* end = nullptr;
-        errno = 0;
-        const double x = std::strtod(v.c_str(), &end);
-        if (v.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(x))
+        const std::optional<double> x = parse_double(v); // out of range: not one either
+        if (!x || !std::isfinite(*x))
             throw InputError(name + ": '" + v + "' is not a finite number");
-        *out = x;
+        *out = *x;
     };
     opts_.push_back(o);
 }
@@ -85,7 +80,7 @@ void ArgParser::option(const std::string& name, long* out, const std::string& me
                        const std::string& help) {
     Opt o{name, metavar, help, std::to_string(*out), nullptr};
     o.set = [out, name](const std::string& v) {
-        *out = parse_integer(name, v, LONG_MIN, LONG_MAX);
+        *out = integer_value(name, v, LONG_MIN, LONG_MAX);
     };
     opts_.push_back(o);
 }
@@ -94,7 +89,7 @@ void ArgParser::option(const std::string& name, int* out, const std::string& met
                        const std::string& help) {
     Opt o{name, metavar, help, std::to_string(*out), nullptr};
     o.set = [out, name](const std::string& v) {
-        *out = int(parse_integer(name, v, INT_MIN, INT_MAX));
+        *out = int(integer_value(name, v, INT_MIN, INT_MAX));
     };
     opts_.push_back(o);
 }

@@ -3,8 +3,10 @@
 #include "parallel/world.h"
 
 #include <cstdlib>
+#include <optional>
 #include <string>
 
+#include "core/parse.h"
 #include "hemirad/error.h"
 
 #if HEMIRAD_HAVE_MPI
@@ -23,9 +25,8 @@ World* g_world = nullptr;
 int env_int(const char* name, int fallback) {
     const char* v = std::getenv(name);
     if (!v || !*v) return fallback;
-    char* end = nullptr;
-    const long n = std::strtol(v, &end, 10);
-    return (*end == 0 && n >= 0 && n < 1 << 24) ? int(n) : fallback;
+    const std::optional<long long> n = parse_integer(v);
+    return (n && *n >= 0 && *n < 1 << 24) ? int(*n) : fallback;
 }
 
 #if HEMIRAD_HAVE_MPI
