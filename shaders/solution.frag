@@ -36,7 +36,7 @@ float edge_distance_pixels() {
     float ws = max(fwidth(s), 1e-8);
     vec2 d = abs(v_grid.xy - round(v_grid.xy)) / w;
     float e = min(d.x, d.y);
-    if (v_grid.z > 0.5) e = min(e, abs(s - round(s)) / ws);
+    if (mod(v_grid.z, 2.0) > 0.5) e = min(e, abs(s - round(s)) / ws);
     return e;
 }
 
@@ -52,6 +52,8 @@ void main() {
     }
     vec3 c;
     if (!gl_FrontFacing) {
+        // The back of a two-sided surface's polygon is its twin's front, drawn there.
+        if (v_grid.z > 1.5) discard;
         c = vec3(0.0); // the back of a polygon leaves no light
     } else if (flat_shading != 0) {
         uint leaf = triangle_leaf[primitive_base + uint(gl_PrimitiveID)];

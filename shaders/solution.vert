@@ -5,7 +5,8 @@
 
 layout(location = 0) in vec3 position; // scene-local: world minus the scene centre
 layout(location = 1) in vec3 grid;     // (u n, v n) on the polygon's n x n leaf grid; z: 1 for a
-                                       // triangle (lattice lines u+v = k too), 0 for a quad
+                                       // triangle (lattice lines u+v = k too), 0 for a quad,
+                                       // plus 2 for one side of a two-sided surface
 layout(location = 2) in uint node;     // welded vertex (node) index
 layout(location = 3) in vec2 st;       // texture coordinates (textured polygons)
 

@@ -32,7 +32,11 @@ struct ClusterShooter {
     dvec3 axis{0.0, 1.0, 0.0};   ///< unit; the two hemicubes look along +axis and -axis
     double radius = 0;           ///< of its bounding sphere [unit]
     std::vector<dvec3> normals;  ///< emission lobes (unit normals)...
-    std::vector<double> weights; ///< ...and their shares of the power (sum 1)
+    std::vector<double> weights; ///< ...and their shares of the power (sum 1)...
+    /// ...and per lobe the plane its polygons lie in front of: min over them of normal . corner.
+    /// A receiver behind every lobe's plane (inside the object the cluster wraps, or behind
+    /// the wall it covers) gets none of its light.
+    std::vector<double> offsets;
     /// Its polygons, sorted: not drawn (they do not occlude its light), never linked.
     std::vector<std::uint32_t> members;
     double unshot_power = 0;   ///< sum over RGB [W]; providers may adapt to it
@@ -111,6 +115,12 @@ class HEMIRAD_API FormFactorProvider {
     /// polygons in the last shoot(): near 1 when the shooter's centre is enclosed (under a
     /// box, behind a light), where a point-sampled shot would lose the patch's power.
     virtual double last_backface_fraction() const { return 0; }
+    /// Fraction of the last patch shooter's hemisphere (by form factor) that is either the
+    /// backs of polygons or surfaces nearer than a quarter of the shooter's size (sqrt of its
+    /// area): near 1 when its centre is shut in (under a box, inside a shelf that stands
+    /// against it, whose inner faces are fronts when the shelf is two-sided), where one
+    /// point cannot stand for the patch. Computed on demand; default: last_backface_fraction().
+    virtual double last_enclosed_fraction() const { return last_backface_fraction(); }
     /// Share of the last shooter's form factor whose visibility changes across the shooter's
     /// area (silhouettes of nearby occluders; gpu/hemicube.h, parallax_fraction): large when a
     /// shot from the centre misrepresents what the shooter's area sees. Computed on demand

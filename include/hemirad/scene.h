@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -27,8 +28,14 @@ struct HEMIRAD_API Material {
     /// texel there (rho is the multiplier: OBJ Kd, glTF baseColorFactor); a leaf patch's is rho
     /// times the texels' mean over the leaf (patch_reflectance(), patch.h).
     int texture = -1;
+    /// Both sides of its polygons are surfaces (glTF doubleSided): make_two_sided() gives each
+    /// polygon a back-to-back twin.
+    bool two_sided = false;
     dvec3 exitance() const; ///< emitted radiosity Be = pi*Ke [W unit^-2]
 };
+
+/// Polygon::twin of a one-sided polygon.
+inline constexpr std::uint32_t kNoTwin = 0xFFFFFFFFu;
 
 /// A planar convex polygon: 3 or 4 corners, counter-clockwise seen from the front (normal side).
 struct HEMIRAD_API Polygon {
@@ -38,6 +45,10 @@ struct HEMIRAD_API Polygon {
     double area = 0.0;          ///< [unit^2]
     std::uint32_t material = 0; ///< index into Scene::materials
     std::uint32_t group = 0;    ///< index into Scene::groups
+    /// A two-sided surface is two polygons back to back (make_two_sided()): each receives and
+    /// shoots on its own side; `twin` is the other one, kNoTwin for a one-sided polygon (whose
+    /// back is black and occludes).
+    std::uint32_t twin = kNoTwin;
     bool is_triangle() const { return count == 3; }
     dvec3 centroid() const;
 };
@@ -114,6 +125,28 @@ HEMIRAD_API AddResult add_polygon(Scene& scene, const std::vector<dvec3>& corner
                                   std::uint32_t material, std::uint32_t group,
                                   double planarity_tolerance = 1e-6,
                                   const std::vector<glm::dvec2>* uv = nullptr);
+
+/// Makes the polygons for which pick(index) is true two-sided: appends to each a twin with
+/// the same corners in reverse order (the opposite normal), the same material and group, and
+/// the texture coordinates that go with its corners, and links the two (Polygon::twin).
+/// Polygons that have a twin already are left alone. Returns how many twins were added.
+HEMIRAD_API std::size_t make_two_sided(Scene& scene,
+                                       const std::function<bool(std::uint32_t)>& pick);
+
+/// Cuts every polygon that another polygon passes through (a wall face that reaches below the
+/// floor, a jar sunk into a shelf, a floor running on into a wall slab), along the line where
+/// they meet, so that the part on each side is a polygon of its own (split_intersections.cpp:
+/// otherwise leaf patches straddle the two sides and carry light into closed cavities).
+/// Polygons that only touch (a box standing on a floor) are left whole: a shooter's
+/// visibility test keeps light off the part under the box. A meeting line
+/// shorter than a tenth of the polygon's longest edge is not cut; at most 16 lines a polygon
+/// (the longest); pieces keep the polygon's material, group and texture coordinates. For a
+/// scene without twins (before make_two_sided). Deterministic.
+struct SplitStats {
+    std::size_t polygons_cut = 0; ///< polygons replaced by pieces
+    std::size_t pieces = 0;       ///< polygons made of them
+};
+HEMIRAD_API SplitStats split_intersections(Scene& scene);
 
 /// For faces of a textured material that carry no texture coordinates: the index of a copy of
 /// `material` with its reflectance times the texture's mean and no texture (named "NAME

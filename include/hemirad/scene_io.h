@@ -1,6 +1,7 @@
 // Loading scenes: OBJ/MTL files and the built-in scenes.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "hemirad/scene.h"
@@ -20,7 +21,23 @@ struct ObjOptions {
     /// Reflectance used for a Kd channel of 1 or more (a surface can't reflect all the light it
     /// receives; exporters write Kd 1 for white), in (0, 1). Kd values under 1 are kept as given.
     double max_reflectance = 0.98;
+    /// Every polygon of the scene's files is two-sided (`--two-sided-surfaces`: make_two_sided;
+    /// glTF materials marked doubleSided are two-sided whatever this says).
+    bool two_sided_surfaces = false;
+    /// Cut polygons where others pass through them (split_intersections,
+    /// `--split-intersections on|off`).
+    bool split_intersections = true;
+    /// The loaders finish the surfaces (finish_surfaces()) before they return; the SCENE.json
+    /// reader turns this off for the files it includes and finishes them once, merged.
+    bool finish_surfaces = true;
 };
+
+/// The last step of loading a file: cuts the polygons where others pass through them
+/// (options.split_intersections; a warning says how many), then makes the two-sided surfaces
+/// two-sided (make_two_sided): every polygon with options.two_sided_surfaces, else those of
+/// materials marked two_sided (glTF doubleSided) and those for which `also(index)` is true.
+HEMIRAD_API void finish_surfaces(Scene& scene, const ObjOptions& options,
+                                 const std::function<bool(std::uint32_t)>& also = {});
 
 /// Loads "NAME" (a built-in scene), a path to an OBJ file, a glTF 2.0 file (a path ending in
 /// .gltf or .glb: load_gltf) or a SCENE.json project file (a path ending in .json:
@@ -37,7 +54,8 @@ HEMIRAD_API Scene load_scene(const std::string& name_or_path, const BuiltinOptio
 ///      {"candela": 500, "position": [1, 2, 1]},         isotropic, I [cd]
 ///      {"spot": {"candela": 2000, "cone": 20, "falloff": 10}, "position": [...], "aim": [...]}],
 ///    "cameras": [{"name": "door", "eye": [0, 1.6, 0], "target": [2, 1, 2], "up": [0, 1, 0],
-///                 "fov": 60}]}
+///                 "fov": 60}],
+///    "two_sided": ["Glass", "Curtain"]}       surface groups whose polygons are two-sided
 ///
 /// A luminaire is exactly one of `ies`, `candela`, `spot`; `position` is required; `aim` (the
 /// nadir, gamma = 0; default straight down, [0, -1, 0]), `rotation` (of the C planes about the

@@ -114,6 +114,7 @@ Bvh::Bvh(const Scene& scene) {
         q.e3 = p.count == 4 ? p.v[3] - p.v[0] : dvec3(0.0);
         q.normal = p.normal;
         q.count = p.count;
+        q.twinned = p.twin != kNoTwin;
         lo[i] = hi[i] = p.v[0];
         for (int k = 1; k < p.count; ++k) {
             lo[i] = glm::min(lo[i], p.v[k]);
@@ -310,6 +311,8 @@ bool Bvh::intersect(const dvec3& origin, const dvec3& dir, double tmax, Hit& hit
     bool found = false;
     traverse(origin, dir, tmin, best, [&](std::uint32_t p) {
         if (p == ignore) return false;
+        // The back of a two-sided surface's polygon is its twin's front, at the same place.
+        if (prims_[p].twinned && glm::dot(prims_[p].normal, dir) >= 0) return false;
         double t, u, v;
         if (hit_prim(prims_[p], origin, dir, tmin, best, t, u, v)) {
             best = t;

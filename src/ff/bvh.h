@@ -21,8 +21,9 @@ struct Hit {
 };
 
 /// Binned-SAH BVH (12 bins per axis, leaves of at most 4 polygons) in double precision.
-/// Polygons are hit from both sides. Read-only after construction: safe to share between
-/// threads.
+/// Polygons are hit from both sides, but for the two polygons of a two-sided surface
+/// (Polygon::twin), each hit from its front only: the other is hit there instead. Read-only after
+/// construction: safe to share between threads.
 class Bvh {
   public:
     explicit Bvh(const Scene& scene);
@@ -50,6 +51,7 @@ class Bvh {
         dvec3 v0, e1, e2, e3; ///< v0 and edges v1-v0, v2-v0, v3-v0 (e3 unused for triangles)
         dvec3 normal;
         int count = 3;
+        bool twinned = false; ///< one side of a two-sided surface (Polygon::twin)
     };
 
     std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::vector<dvec3>& lo,

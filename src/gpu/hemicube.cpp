@@ -121,6 +121,9 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
         clusters_.push_back(c);
     }
     hidden_per_cluster_.assign(clusters_.size(), 0);
+    twinned_cluster_.assign(clusters_.size(), 0);
+    for (std::size_t i = 0; i < scene.polygons.size(); ++i)
+        if (scene.polygons[i].twin != kNoTwin) twinned_cluster_[i / kClusterSize] = 1;
 
     // Vertices: every polygon as one triangle or two, with its (u,v) parameters.
     std::vector<Vertex> verts;
@@ -322,7 +325,8 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
                 all_in &= lo >= -eps;
             }
             if (all_out) continue;
-            if (all_in && hidden_per_cluster_[std::size_t(&k - clusters_.data())] == 0) {
+            const std::size_t ki = std::size_t(&k - clusters_.data());
+            if (all_in && hidden_per_cluster_[ki] == 0 && !twinned_cluster_[ki]) {
                 if (own >= k.begin && own < k.end) {
                     draw_polygons(k.begin, own);
                     draw_polygons(own + 1, k.end);
@@ -335,6 +339,9 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
             for (std::uint32_t i = k.begin; i < k.end; ++i) {
                 if (i == own || (some_hidden && hidden(i))) continue;
                 const Polygon& p = scene_->polygons[i];
+                // A two-sided surface shows the eye the side that faces it: the back of a
+                // twinned polygon is its twin's front, drawn instead (the two would z-fight).
+                if (p.twin != kNoTwin && glm::dot(p.normal, p.v[0] - c) >= 0) continue;
                 bool above = false;
                 for (int j = 0; j < p.count; ++j) above |= glm::dot(p.v[j] - c, N) > eps;
                 if (!above) continue;

@@ -61,6 +61,10 @@ dvec3 hemicube_direction(const HemicubeLayout& layout, const HemicubeFrame& fram
 /// the image read back (IDs as in FormFactorProvider::HemicubeImage).
 double parallax_fraction(const Scene& scene, const Shooter& shooter, const HemicubeLayout& layout,
                          const float* rgba);
+/// Share of a rendered hemicube (by delta form factor) that shows the front of a polygon
+/// nearer than `distance` to the eye [scene units].
+double near_fraction(const Scene& scene, const Shooter& shooter, const HemicubeLayout& layout,
+                     const float* rgba, double distance);
 
 class HemicubeRenderer {
   public:
@@ -104,6 +108,7 @@ class HemicubeRenderer {
     std::vector<Cluster> clusters_;
     std::vector<std::uint32_t> hidden_;             ///< set_hidden(), sorted
     std::vector<std::uint32_t> hidden_per_cluster_; ///< of clusters_, how many are hidden
+    std::vector<std::uint8_t> twinned_cluster_;     ///< of clusters_, holds a two-sided polygon
     bool hidden(std::uint32_t polygon) const {
         return !hidden_.empty() && std::binary_search(hidden_.begin(), hidden_.end(), polygon);
     }

@@ -66,4 +66,27 @@ double parallax_fraction(const Scene& scene, const Shooter& shooter, const Hemic
     return total;
 }
 
+double near_fraction(const Scene& scene, const Shooter& shooter, const HemicubeLayout& L,
+                     const float* rgba, double distance) {
+    const HemicubeFrame frame = hemicube_frame(shooter);
+    const dvec3& eye = shooter.geometry.centre;
+    double total = 0;
+    for (int f = 0; f < 5; ++f) {
+        const HemicubeLayout::Face& face = L.faces[f];
+        for (int j = 0; j < face.h; ++j)
+            for (int i = 0; i < face.w; ++i) {
+                const std::size_t px = std::size_t(face.y + j) * L.width + face.x + i;
+                const float id = rgba[4 * px + 2];
+                if (id < 0.5f) continue; // nothing, or a back (counted apart)
+                const Polygon& q = scene.polygons[std::uint32_t(id) - 1];
+                const dvec3 dir = hemicube_direction(L, frame, f, i, j);
+                const double along = glm::dot(dir, q.normal);
+                if (along == 0) continue;
+                const double t = glm::dot(q.v[0] - eye, q.normal) / along;
+                if (t > 0 && t < distance) total += double(L.delta_ff[px]);
+            }
+    }
+    return total;
+}
+
 } // namespace hemirad::gpu

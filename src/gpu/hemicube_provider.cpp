@@ -72,6 +72,11 @@ class HemicubeProvider final : public FormFactorProvider {
     std::string name() const override { return name_; }
     std::vector<Timing> last_timings() const override { return timings_; }
     double last_backface_fraction() const override { return backface_; }
+    double last_enclosed_fraction() const override {
+        if (!last_layout_ || point_shot_) return backface_;
+        return backface_ + gpu::near_fraction(*scene_, last_shooter_, *last_layout_, pixels_.data(),
+                                              0.25 * std::sqrt(last_shooter_.geometry.area));
+    }
     double last_parallax_fraction() const override {
         if (!last_layout_) return 0;
         return gpu::parallax_fraction(*scene_, last_shooter_, *last_layout_, pixels_.data());
@@ -104,6 +109,7 @@ class HemicubeProvider final : public FormFactorProvider {
         timings_.push_back({"render", since(t0) - renderer_->cull_seconds()});
         t0 = Clock::now();
         renderer_->read_back(layout, pixels_);
+        point_shot_ = false;
         last_width_ = layout.width;
         last_height_ = layout.height;
         last_layout_ = &layout;
@@ -194,16 +200,26 @@ class HemicubeProvider final : public FormFactorProvider {
         // How wrong a point is as a stand-in for the cluster: the light received, weighted by
         // (R / r)^2 (the relative error of a point's kernel at distance r from a cluster of
         // radius R, capped at 1), over the light received.
+        // A receiver behind every lobe's plane is inside the object the cluster wraps (or
+        // behind the wall it covers): the point, not the cluster's surfaces, sees it.
         double near = 0, total = 0;
         const double R2 = c.radius * c.radius;
+        const double eps = 1e-6 * std::max(c.radius, 1e-300);
+        std::size_t kept = 0;
         for (const Link& l : links) {
             const Polygon& poly = scene_->polygons[l.receiver.polygon];
             const PatchGeometry g = patch_geometry(poly, l.receiver.level, l.receiver.index);
+            bool in_front = c.offsets.empty();
+            for (std::size_t k = 0; k < c.offsets.size() && !in_front; ++k)
+                in_front = glm::dot(c.normals[k], g.centre) > c.offsets[k] + eps;
+            if (!in_front) continue;
+            links[kept++] = l;
             const double w = double(l.ff) * g.area;
             total += w;
             const dvec3 d = g.centre - c.centre;
             near += w * std::min(1.0, R2 / std::max(glm::dot(d, d), 1e-300));
         }
+        links.resize(kept);
         near_fraction_ = total > 0 ? near / total : 0;
     }
 
@@ -276,6 +292,7 @@ class HemicubeProvider final : public FormFactorProvider {
                 float(analytic_at(sides[0], g.centre, scene_->polygons[a.polygon].normal));
         }
         backface_ = back;
+        point_shot_ = true;
         last_width_ = layout.width;
         last_height_ = layout.height;
         last_layout_ = &layout;
@@ -649,6 +666,7 @@ class HemicubeProvider final : public FormFactorProvider {
     std::vector<dvec3> centre_;          ///< per polygon, its level-0 centre
     const std::vector<std::uint32_t>* hidden_ = nullptr; ///< during shoot_cluster(): members
     double near_fraction_ = 0;
+    bool point_shot_ = false; ///< the last shot was shoot_sphere()'s
     std::vector<std::uint32_t> seen_, below_seen_, polygon_seen_;
     std::vector<PatchAddress> touched_, fillers_;
     std::vector<double> filler_values_;

@@ -59,7 +59,7 @@ namespace {
 
 struct Vertex {        // attributes of solution.vert
     float position[3]; ///< scene-local (world minus the scene centre), for float precision
-    float grid[3];     ///< (u n, v n, triangle ? 1 : 0)
+    float grid[3];     ///< (u n, v n, (triangle ? 1 : 0) + (two-sided ? 2 : 0))
     std::uint32_t node;
     float st[2]; ///< texture coordinates (textured polygons; else 0)
 };
@@ -255,7 +255,8 @@ void SolutionRenderer::Impl::build(const Hierarchy& h) {
                     st = glm::vec2(
                         polygon_texcoord(s, std::uint32_t(p), double(i) / g.n, double(j) / g.n));
                 verts[v] = {{float(q.x), float(q.y), float(q.z)},
-                            {float(i), float(j), g.triangle ? 1.f : 0.f},
+                            {float(i), float(j),
+                             (g.triangle ? 1.f : 0.f) + (poly.twin != kNoTwin ? 2.f : 0.f)},
                             v,
                             {st.x, st.y}};
                 boundary[v] = i == 0 || j == 0 || j == g.n || i == imax;

@@ -141,6 +141,9 @@ class GltfReader {
         std::vector<int> stack;
         for (int r : roots) visit(scene, r, glm::dmat4(1.0), stack);
         for (const std::string& w : warnings_) scene.warnings.push_back(w);
+        // doubleSided materials (glTF 3.9.6): both sides of their triangles are surfaces
+        // (Material::two_sided, made so by finish_surfaces).
+        if (options_.finish_surfaces) finish_surfaces(scene, options_);
         finish_scene(scene, path_);
         return scene;
     }
@@ -371,6 +374,7 @@ class GltfReader {
                                        "'): transparency is not "
                                        "modelled: every surface is opaque");
             mat.rho = rho;
+            mat.two_sided = g.doubleSided;
         }
         const std::uint32_t id = std::uint32_t(scene.materials.size());
         scene.materials.push_back(mat);

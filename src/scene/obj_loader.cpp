@@ -773,8 +773,27 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
         scene.warnings.push_back(first_degenerate + ": dropped " + std::to_string(degenerate) +
                                  " degenerate polygon(s) (zero area or repeated vertices; the "
                                  "first is named)");
+    if (options.finish_surfaces) finish_surfaces(scene, options);
     finish_scene(scene, path);
     return scene;
+}
+
+void finish_surfaces(Scene& scene, const ObjOptions& options,
+                     const std::function<bool(std::uint32_t)>& also) {
+    if (options.split_intersections) {
+        const SplitStats s = split_intersections(scene);
+        if (s.polygons_cut > 0)
+            scene.warnings.push_back(
+                scene.source + ": cut " + std::to_string(s.polygons_cut) +
+                " polygon(s) that other polygons pass through, along where they meet, into " +
+                std::to_string(s.pieces) +
+                " pieces (so that no patch lies on both sides of a surface; "
+                "--split-intersections off keeps them whole)");
+    }
+    make_two_sided(scene, [&](std::uint32_t p) {
+        return options.two_sided_surfaces || scene.material_of(scene.polygons[p]).two_sided ||
+               (also && also(p));
+    });
 }
 
 Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin,

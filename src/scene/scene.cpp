@@ -253,6 +253,7 @@ std::uint64_t Scene::content_hash() const {
         for (int i = 0; i < p.count; ++i) mix(&p.v[i], sizeof(dvec3));
         mix(&p.material, sizeof p.material);
         mix(&p.group, sizeof p.group);
+        if (p.twin != kNoTwin) mix(&p.twin, sizeof p.twin); // one-sided scenes: as before
     }
     for (const Material& m : materials) {
         mix(&m.rho, sizeof m.rho);
@@ -281,6 +282,28 @@ std::uint64_t Scene::content_hash() const {
         mix(&d.symmetry, sizeof d.symmetry);
     }
     return h;
+}
+
+std::size_t make_two_sided(Scene& scene, const std::function<bool(std::uint32_t)>& pick) {
+    const auto n = std::uint32_t(scene.polygons.size());
+    std::size_t added = 0;
+    for (std::uint32_t p = 0; p < n; ++p) {
+        if (scene.polygons[p].twin != kNoTwin || !pick(p)) continue;
+        Polygon t = scene.polygons[p];
+        // Corners reversed about the first: (v0, v3, v2, v1) or (v0, v2, v1).
+        std::reverse(t.v.begin() + 1, t.v.begin() + t.count);
+        t.normal = -t.normal;
+        t.twin = p;
+        scene.polygons[p].twin = std::uint32_t(scene.polygons.size());
+        scene.polygons.push_back(t);
+        if (!scene.texcoords.empty()) {
+            TexCoords uv = scene.texcoords[p];
+            std::reverse(uv.begin() + 1, uv.begin() + t.count);
+            scene.texcoords.push_back(uv);
+        }
+        ++added;
+    }
+    return added;
 }
 
 } // namespace hemirad

@@ -222,9 +222,11 @@ void merge(Scene& out, const Scene& part) {
             group[g] = std::uint32_t(out.groups.size() - 1);
         }
     }
+    const auto first = std::uint32_t(out.polygons.size());
     for (Polygon p : part.polygons) {
         p.material += offset;
         p.group = group[p.group];
+        if (p.twin != kNoTwin) p.twin += first;
         out.polygons.push_back(p);
     }
     out.cameras.insert(out.cameras.end(), part.cameras.begin(), part.cameras.end());
@@ -339,7 +341,7 @@ Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
     KeyLines locator(text);
     json::sax_parse(text, &locator);
     const Reader r(path, locator.lines);
-    r.only_keys(doc, "", {"include", "luminaires", "cameras"});
+    r.only_keys(doc, "", {"include", "luminaires", "cameras", "two_sided"});
 
     Scene scene;
     scene.source = path;
@@ -350,13 +352,39 @@ Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
         const std::string at = "/include/" + std::to_string(i);
         const std::string file = r.string(include[i], at);
         const std::string ext = lower_extension(file);
-        if (ext == ".gltf" || ext == ".glb")
-            r.fail(at, "'" + file + "': glTF is not read yet (include OBJ files)");
-        if (ext != ".obj") r.fail(at, "'" + file + "': expected an OBJ file (.obj)");
+        if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
+            r.fail(at, "'" + file + "': expected an OBJ or glTF file (.obj, .gltf, .glb)");
         const std::string resolved = r.resolve(file);
         if (!fs::exists(resolved)) r.fail(at, "'" + file + "': no such file (" + resolved + ")");
-        merge(scene, is_gltf(resolved) ? load_gltf(resolved, obj) : load_obj(resolved, obj));
+        ObjOptions part = obj; // the surfaces are finished once, merged (below)
+        part.finish_surfaces = false;
+        merge(scene, is_gltf(resolved) ? load_gltf(resolved, part) : load_obj(resolved, part));
     }
+    std::vector<char> pick; // per group: two-sided ("two_sided")
+    if (doc.contains("two_sided")) {
+        // Surface groups whose polygons are two-sided (make_two_sided).
+        const json& ts = doc["two_sided"];
+        if (!ts.is_array())
+            r.fail("/two_sided", "expected a list of surface group names, e.g. \"two_sided\": "
+                                 "[\"Glass\"]");
+        pick.assign(scene.groups.size(), 0);
+        for (std::size_t k = 0; k < ts.size(); ++k) {
+            const std::string at = "/two_sided/" + std::to_string(k);
+            const std::string name = r.string(ts[k], at);
+            const int g = scene.find_group(name);
+            if (g < 0) {
+                std::string names;
+                for (const std::string& n : scene.groups) names += (names.empty() ? "" : ", ") + n;
+                r.fail(at, "no surface group '" + name +
+                               "' in the included files (groups: " + names + ")");
+            }
+            pick[std::size_t(g)] = 1;
+        }
+    }
+    if (obj.finish_surfaces)
+        finish_surfaces(scene, obj, [&](std::uint32_t p) {
+            return !pick.empty() && pick[scene.polygons[p].group] != 0;
+        });
     if (doc.contains("luminaires")) {
         const json& ls = doc["luminaires"];
         if (!ls.is_array()) r.fail("/luminaires", "expected a list of luminaires [{...}, ...]");

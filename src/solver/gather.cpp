@@ -15,9 +15,10 @@ namespace hemirad {
 
 namespace {
 
-constexpr int kPenumbraSplit = 2; ///< a penumbra cell is re-sampled 4^2 = 16 times finer
-constexpr int kMaxCellLevel = 3;  ///< at most 8 x 8 coarse cells, 32 x 32 fine ones
-constexpr double kNearLeaves = 3; ///< hits nearer than this many leaf sizes: evaluated at the hit
+constexpr int kPenumbraSplit = 2;  ///< a penumbra cell is re-sampled 4^2 = 16 times finer
+constexpr int kMaxCellLevel = 3;   ///< at most 8 x 8 coarse cells, 32 x 32 fine ones
+constexpr double kNearLeaves = 3;  ///< hits nearer than this many leaf sizes: evaluated at the hit
+constexpr double kGapLeaves = 0.1; ///< ...and nearer than this: a gap, direct light only
 
 bool nonzero(const dvec3& v) {
     return v.x > 0 || v.y > 0 || v.z > 0;
@@ -133,7 +134,9 @@ dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_
     const Polygon& q = scene.polygons[hit.polygon];
     const dvec3 rho = reflectance_at(scene, hit.polygon, hit.u, hit.v); // the texel there
     if (!(rho.x > 0 || rho.y > 0 || rho.z > 0)) return dvec3(0.0);
-    if (near_path && hit.t * glm::length(dir) < kNearLeaves * leaf_size_[hit.polygon]) {
+    const double distance = hit.t * glm::length(dir);
+    const bool near = distance < kNearLeaves * leaf_size_[hit.polygon];
+    if (near && near_path) {
         // Near the point a leaf's value is too coarse (a contact shadow, a corner): estimate
         // H(y) at the hit itself, direct light sampled there plus one more cosine ray into the
         // solution. One sample each; the primary rays average them.
@@ -143,6 +146,11 @@ dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_
         const double u1 = rng.uniform(), u2 = rng.uniform();
         const dvec3 next = cosine_direction(q.normal, t, b, u1, u2);
         const dvec3 y_off = y + offset_ * q.normal;
+        // In a gap far thinner than a leaf (two surfaces almost touching: an object sunk
+        // into another, a pocket), the leaves beyond average light from outside the gap: the
+        // direct light at y alone.
+        if (distance < kGapLeaves * leaf_size_[hit.polygon])
+            return rho * direct_sample(y, q.normal, hit.polygon, rng);
         return rho * (direct_sample(y, q.normal, hit.polygon, rng) +
                       reflected(y_off, next, hit.polygon, rng, false));
     }

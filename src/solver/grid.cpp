@@ -61,9 +61,14 @@ std::vector<std::uint32_t> grid_polygons(const Scene& scene, const GridSpec& spe
         throw InputError("--grid: no surface group '" + spec.group + "' in " + scene.source +
                          " (groups: " + names + ")");
     }
+    // A two-sided group: the grid lies on the side the file's normals face (the twins, added
+    // after the file's polygons, face the other way: Polygon::twin).
     std::vector<std::uint32_t> polys;
-    for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
-        if (scene.polygons[p].group == std::uint32_t(group)) polys.push_back(p);
+    for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
+        const Polygon& poly = scene.polygons[p];
+        if (poly.group == std::uint32_t(group) && (poly.twin == kNoTwin || poly.twin > p))
+            polys.push_back(p);
+    }
     HEMIRAD_CHECK(!polys.empty());
     const Polygon& first = scene.polygons[polys[0]];
     // Coplanar and facing the same way, within a tolerance relative to the scene's size.

@@ -284,7 +284,7 @@ PatchAddress Solver::shoot_patch(std::uint32_t polygon, ShotRecord& rec, dvec3& 
         if (int(sa.level) < hierarchy_.depth(polygon)) {
             const std::uint64_t id = hierarchy_.node_id(sa);
             if (!measured(view_[id])) {
-                view_[id] = provider_->last_backface_fraction() > options_.enclosed_fraction
+                view_[id] = provider_->last_enclosed_fraction() > options_.enclosed_fraction
                                 ? kViewEnclosed
                                 : parallax_code(provider_->last_parallax_fraction());
                 learned_.emplace_back(id, view_[id]);
@@ -375,6 +375,7 @@ bool Solver::shoot_cluster(ShotRecord& rec, std::uint32_t& polygon) {
         dvec3 power(0.0), centre(0.0), axis(0.0);
         double weight = 0;
         std::vector<dvec3> lobe_sum;
+        std::vector<std::pair<std::size_t, std::uint32_t>> lobe_members; // (lobe, polygon)
         for (std::uint32_t m : c.members) {
             if (hierarchy_.needs_push_pull(m)) hierarchy_.push_pull(m);
             const dvec3 u = hierarchy_.unshot_power(m);
@@ -401,6 +402,7 @@ bool Solver::shoot_cluster(ShotRecord& rec, std::uint32_t& polygon) {
             }
             lobe_sum[k] += w * poly.normal;
             c.weights[k] += w;
+            lobe_members.emplace_back(k, m);
         }
         rec.t_push_pull += since(t0);
         if (!(weight > 0)) { // nothing to shoot after all (cannot happen: the node has power)
@@ -411,6 +413,12 @@ bool Solver::shoot_cluster(ShotRecord& rec, std::uint32_t& polygon) {
             const double len = glm::length(lobe_sum[k]);
             c.normals.push_back(len > 0 ? lobe_sum[k] / len : dvec3(0, 1, 0));
             c.weights[k] /= weight;
+        }
+        c.offsets.assign(lobe_sum.size(), 1e300);
+        for (const auto& [k, m] : lobe_members) {
+            const Polygon& poly = scene_->polygons[m];
+            for (int q = 0; q < poly.count; ++q)
+                c.offsets[k] = std::min(c.offsets[k], glm::dot(c.normals[k], poly.v[q]));
         }
         // It shoots from the area-weighted centre of its polygons: a point that does not move
         // with its light, so that what its hemicube showed once holds at the next shot.

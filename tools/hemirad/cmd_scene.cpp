@@ -57,12 +57,15 @@ int cmd_scene(int argc, char** argv) {
     }
     const Bounds b = scene.bounds();
     const dvec3 power = scene.emitted_power();
+    std::size_t two_sided = 0;
+    for (const Polygon& p : scene.polygons) two_sided += p.twin != kNoTwin ? 1 : 0;
     if (json) {
         Json j = Json::object();
         j["source"] = scene.source;
         j["polygons"] = scene.polygons.size();
         j["triangles"] = scene.triangle_count();
         j["quads"] = scene.quad_count();
+        j["two_sided_polygons"] = two_sided;
         j["total_area"] = scene.total_area();
         j["emitted_power"] = power;
         j["surface_power"] = scene.surface_power();
@@ -113,6 +116,10 @@ int cmd_scene(int argc, char** argv) {
     std::printf("scene      %s\n", scene.source.c_str());
     std::printf("polygons   %zu (%zu triangles, %zu quads)\n", scene.polygons.size(),
                 scene.triangle_count(), scene.quad_count());
+    if (two_sided > 0)
+        std::printf(
+            "two-sided  %zu polygons (each side a polygon of its own, both counted above)\n",
+            two_sided);
     std::printf("area       %.6g unit^2\n", scene.total_area());
     std::printf("emitted    %.6g %.6g %.6g W (RGB)\n", power.x, power.y, power.z);
     std::printf("bounds     (%.6g, %.6g, %.6g) .. (%.6g, %.6g, %.6g)\n", b.lo.x, b.lo.y, b.lo.z,

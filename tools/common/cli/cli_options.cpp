@@ -77,6 +77,21 @@ void add_obj_scene_options(ArgParser& args, ObjOptions& o) {
     args.option("--max-reflectance", &o.max_reflectance, "R",
                 "OBJ/MTL: reflectance used for a Kd channel of 1 or more, in (0,1) (a surface "
                 "can't reflect all the light it receives)");
+    args.flag("--two-sided-surfaces", &o.two_sided_surfaces,
+              "every polygon of the scene files is two-sided: each side receives and reflects "
+              "light on its own (a back-to-back twin); glTF materials marked doubleSided are "
+              "two-sided anyway");
+    args.custom(
+        "--split-intersections",
+        [&o](const std::string& v) {
+            if (v != "on" && v != "off")
+                throw InputError("--split-intersections '" + v + "' must be on or off");
+            o.split_intersections = v == "on";
+        },
+        "on|off",
+        "cut polygons where other polygons pass through them (a wall reaching below the floor, "
+        "an object sunk into another), so that no patch carries light from one side into the "
+        "other (Default: on)");
 }
 
 void add_scene_options(ArgParser& args, BuiltinOptions& builtin, ObjOptions& obj) {
