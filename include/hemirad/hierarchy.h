@@ -82,8 +82,16 @@ class HEMIRAD_API Hierarchy {
     /// Radiosity B = Be + rho*H of a node (valid for pushed polygons) [W unit^-2]; on a
     /// textured polygon rho is the node's mean reflectance (exact at leaves).
     dvec3 radiosity(const PatchAddress& a) const;
-    /// Irradiance H of a node, including what is still unpushed above and at it.
-    dvec3 irradiance(const PatchAddress& a) const;
+    /// Irradiance of a node as read out: H, what is still unpushed above and at it, and the
+    /// estimate of the light not yet shot (set_unshot_estimate).
+    dvec3 irradiance(const PatchAddress& a) const { return irradiance_shot(a) + unshot_estimate_; }
+    /// The same without the estimate: what the shots delivered so far.
+    dvec3 irradiance_shot(const PatchAddress& a) const;
+    /// The irradiance still to arrive at every surface from the power not yet shot
+    /// (Solver::ambient_irradiance; 0 until a solver sets it), added by irradiance() and so to
+    /// every read-out: probes, grids, images, lightmaps, reports.
+    void set_unshot_estimate(const dvec3& e) { unshot_estimate_ = e; }
+    const dvec3& unshot_estimate() const { return unshot_estimate_; }
 
     /// Bytes of node storage per leaf patch (for reports).
     double bytes_per_leaf() const;
@@ -114,6 +122,7 @@ class HEMIRAD_API Hierarchy {
     std::vector<dvec3> unshot_;
     std::vector<std::uint8_t> dirty_;
     std::uint64_t leaves_ = 0;
+    dvec3 unshot_estimate_{0.0};
 };
 
 } // namespace hemirad

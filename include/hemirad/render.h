@@ -26,10 +26,10 @@ struct RenderOptions {
     /// Flat: every leaf patch shows its own value.
     enum class Shading { Smooth, Flat } shading = Shading::Smooth;
     bool patch_edges = false; ///< overlay the leaf patch edges (darkened, ~1 pixel wide)
-    /// Add rho * ambient to the radiosity (Cohen et al. 1988), for unconverged solutions;
-    /// with Quantity::Irradiance the ambient irradiance itself is added. Display only.
-    bool ambient = false;
-    dvec3 ambient_irradiance{0.0}; ///< Solver::ambient_irradiance(), used when ambient is on
+    /// Include the estimate of the light not yet shot (Hierarchy::unshot_estimate(), set by
+    /// Solver::solution(): an ambient term after Cohen et al. 1988), as every read-out does;
+    /// off: what the shots delivered so far alone (the viewer's key B).
+    bool ambient = true;
     enum class Quantity { Radiosity, Irradiance } quantity = Quantity::Radiosity;
     dvec3 background{0.0}; ///< where no surface is (written as is, not scaled)
     /// Draw the backs of polygons (as 0, black: they leave no light) instead of culling them

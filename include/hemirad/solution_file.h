@@ -22,8 +22,9 @@
 //             ...   u32 count, then f64 per value: provider state (FormFactorProvider)
 //             ...   u32 luminaire count L, then L*24: f64[3] unshot power per luminaire
 //                   (version 2; version 1 files, without it, are read as L = 0)
-//             ...   u64 cluster count C, then C*1: u8 view code per cluster-tree node
-//                   (version 3; older files are read as C = 0)
+//             ...   u64 cluster count C, then C*1: u8 view code per cluster-tree node,
+//                   f64 landed power, f64 shot power (Solver::Counters; version 3: older
+//                   files are read as C = 0 and no power shot)
 //     end-8   8     u64 FNV-1a 64 hash of every byte before it (detects corruption)
 //
 // (str = u32 byte length + bytes.) A file that is truncated, corrupt, of another version or

@@ -183,9 +183,15 @@ class HEMIRAD_API Solver {
     const SolverOptions& options() const { return options_; }
     const Scene& scene() const { return *scene_; }
 
-    /// Ambient term (Cohen et al. 1988) for display of an unconverged solution: an estimate
-    /// of the irradiance not yet delivered, R * sum(dB*A)/sum(A), R = 1/(1 - rho_avg), RGB.
-    /// Add rho*ambient to a patch's radiosity for display only; never mixed into B.
+    /// An estimate of the irradiance still to arrive at every surface from the power not yet
+    /// shot, RGB [W unit^-2]: an ambient term after Cohen, Chen, Wallace & Greenberg (1988)
+    /// that knows light escapes. The unshot power U lands at the rate r (the power-weighted
+    /// mean row sum of the patch and cluster shots so far; 1 before any), is reflected with
+    /// rho (the area-weighted mean reflectance), lands again..., so the irradiance power still
+    /// to arrive is U r / (1 - rho r), spread evenly over the scene's area A:
+    ///     E_a = U r / ((1 - rho r) A)   per channel.
+    /// solution() puts it into every read-out (Hierarchy::unshot_estimate()), so that an
+    /// unconverged solution does not read low; the error bound still counts U as unshot.
     dvec3 ambient_irradiance() const;
 
     /// Resets the timer origin (for resumed runs) and restores counters (save/resume).
@@ -194,6 +200,8 @@ class HEMIRAD_API Solver {
         dvec3 absorbed{0.0}, escaped{0.0};
         double row_min = 0, row_max = 0, row_total = 0;
         long row_guarded = 0;
+        double landed = 0; ///< sum over patch and cluster shots of min(row sum, 1) * power [W]
+        double shot = 0;   ///< sum over patch and cluster shots of their power [W]
         std::int64_t last_polygon = -1;
         double seconds = 0;
     };
@@ -266,6 +274,7 @@ class HEMIRAD_API Solver {
     double max_size_ = 0;
     double row_min_ = 1e300, row_max_ = 0, row_total_ = 0;
     long row_guarded_ = 0;
+    double landed_ = 0, shot_ = 0; ///< Counters::landed, Counters::shot
     std::int64_t last_polygon_ = -1;
     double seconds_ = 0;
 };

@@ -187,7 +187,7 @@ dvec3 Hierarchy::radiosity(const PatchAddress& a) const {
     return m.exitance() + reflectance(a) * irradiance(a);
 }
 
-dvec3 Hierarchy::irradiance(const PatchAddress& a) const {
+dvec3 Hierarchy::irradiance_shot(const PatchAddress& a) const {
     const bool tri = scene_->polygons[a.polygon].is_triangle();
     dvec3 h = dvec3(node(a).H) + dvec3(node(a).dI);
     PatchAddress cur = a;

@@ -81,6 +81,8 @@ Json solve_report(Solver& solver) {
     j["unshot_power"] = h.total_unshot_power();
     j["unshot_fraction"] = solver.unshot_fraction();
     j["error_bound"] = solver.error_bound();
+    // In every read-out: the irradiance still to arrive from the unshot power (estimated).
+    j["unshot_estimate"] = h.unshot_estimate();
     j["tolerance"] = solver.options().tolerance;
     j["converged"] = solver.converged();
     j["stop_reason"] = to_string(solver.stop_reason());

@@ -367,7 +367,7 @@ void SolutionRenderer::Impl::compute_colours(const Hierarchy& h, const RenderOpt
     const Scene& s = *scene;
     const bool irradiance = o.quantity == RenderOptions::Quantity::Irradiance;
     const bool smooth = o.shading == RenderOptions::Shading::Smooth;
-    const dvec3 ambient = o.ambient ? o.ambient_irradiance : dvec3(0.0);
+    const dvec3 ambient = o.ambient ? h.unshot_estimate() : dvec3(0.0);
     if (smooth) std::fill(node_sums.begin(), node_sums.end(), glm::vec4(0.f));
     std::array<std::uint32_t, 4> c{};
     for (std::size_t p = 0; p < s.polygons.size(); ++p) {
@@ -388,7 +388,7 @@ void SolutionRenderer::Impl::compute_colours(const Hierarchy& h, const RenderOpt
         for (std::uint32_t i = 0; i < leaves; ++i) {
             const PatchAddress a{std::uint32_t(p), g.depth, i};
             const Hierarchy::Node& node = h.node(a);
-            const glm::vec3 E = pushed ? node.H + node.dI : glm::vec3(h.irradiance(a));
+            const glm::vec3 E = pushed ? node.H + node.dI : glm::vec3(h.irradiance_shot(a));
             const glm::vec3 value =
                 Be + (detail && !smooth ? glm::vec3(h.reflectance(a)) : rho) * (E + amb);
             if (!smooth) {

@@ -223,7 +223,8 @@ SplitStats split_intersections(Scene& scene) {
                 }
             const std::size_t before = out.polygons.size();
             add_polygon(out, piece, P.material, P.group, 1e-6, uv ? &st : nullptr);
-            if (uv && out.texcoords.size() < out.polygons.size()) out.texcoords.resize(out.polygons.size());
+            if (uv && out.texcoords.size() < out.polygons.size())
+                out.texcoords.resize(out.polygons.size());
             stats.pieces += out.polygons.size() - before;
         }
     }

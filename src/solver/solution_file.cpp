@@ -178,6 +178,8 @@ std::string solution_bytes(const Solver& solver) {
     for (const dvec3& u : st.luminaires) w.dvec(u);
     w.u64(st.clusters.size());
     for (std::uint8_t e : st.clusters) w.u8(e);
+    w.f64(c.landed);
+    w.f64(c.shot);
     w.u64(fnv1a(w.bytes().data(), w.bytes().size()));
     return std::move(w.bytes());
 }
@@ -258,6 +260,8 @@ SolutionFile parse_solution(const std::string& bytes, const std::string& path) {
         const std::uint64_t n_clusters = r.count(r.u64("cluster count"), 1, "cluster view codes");
         f.state.clusters.resize(n_clusters);
         for (std::uint8_t& e : f.state.clusters) e = r.u8("cluster view code");
+        c.landed = r.f64("landed power");
+        c.shot = r.f64("shot power");
     } else { // versions 1 and 2 coded parallax 16 steps to an octave from 2 up to 255
         for (std::uint8_t& e : f.state.enclosed)
             if (e >= 2) e = std::uint8_t(2 + (e - 2) / 2 > 127 ? 127 : 2 + (e - 2) / 2);

@@ -560,6 +560,10 @@ void Solver::finish_shot(ShotRecord& rec, Clock::time_point t_start) {
     row_min_ = std::min(row_min_, row);
     row_max_ = std::max(row_max_, row);
     row_total_ += row;
+    if (rec.luminaire < 0) {
+        landed_ += std::min(row, 1.0) * rec.shooter_power;
+        shot_ += rec.shooter_power;
+    }
     ++shots_;
     seconds_ += since(t_start);
     rec.unshot = unshot_power();
@@ -591,6 +595,7 @@ Solver::RowSumStats Solver::row_sums() const {
 
 Hierarchy& Solver::solution() {
     hierarchy_.push_pull_all();
+    hierarchy_.set_unshot_estimate(ambient_irradiance());
     return hierarchy_;
 }
 
@@ -603,9 +608,9 @@ dvec3 Solver::ambient_irradiance() const {
         rho_area += hierarchy_.reflectance({i, 0, 0}) * p.area; // the texture's mean where textured
     }
     if (area <= 0) return dvec3(0.0);
-    const dvec3 rho_avg = rho_area / area;
-    const dvec3 R = dvec3(1.0) / (dvec3(1.0) - rho_avg);
-    return R * unshot_power() / area;
+    const dvec3 rho = rho_area / area;
+    const double r = shot_ > 0 ? std::clamp(landed_ / shot_, 0.0, 1.0) : 1.0;
+    return unshot_power() * r / ((dvec3(1.0) - rho * r) * area);
 }
 
 Solver::Counters Solver::counters() const {
@@ -617,6 +622,8 @@ Solver::Counters Solver::counters() const {
     c.row_max = row_max_;
     c.row_total = row_total_;
     c.row_guarded = row_guarded_;
+    c.landed = landed_;
+    c.shot = shot_;
     c.last_polygon = last_polygon_;
     c.seconds = seconds_;
     return c;
@@ -630,6 +637,8 @@ void Solver::restore(const Counters& c) {
     row_max_ = c.row_max;
     row_total_ = c.row_total;
     row_guarded_ = c.row_guarded;
+    landed_ = c.landed;
+    shot_ = c.shot;
     last_polygon_ = c.last_polygon;
     seconds_ = c.seconds;
     check_stop();

@@ -229,6 +229,10 @@ bool Solver::step_round() {
         row_min_ = std::min(row_min_, rec.row_sum);
         row_max_ = std::max(row_max_, rec.row_sum);
         row_total_ += rec.row_sum;
+        if (rec.luminaire < 0) {
+            landed_ += std::min(rec.row_sum, 1.0) * rec.shooter_power;
+            shot_ += rec.shooter_power;
+        }
         ++shots_;
         rec.unshot = unshot_power();
         rec.unshot_fraction = unshot_fraction();
@@ -270,7 +274,8 @@ std::uint64_t Solver::state_checksum() const {
     const double counters[] = {
         double(shots_), absorbed_.x, absorbed_.y,          absorbed_.z,
         escaped_.x,     escaped_.y,  escaped_.z,           row_min_,
-        row_max_,       row_total_,  double(row_guarded_), double(last_polygon_)};
+        row_max_,       row_total_,  double(row_guarded_), double(last_polygon_),
+        landed_,        shot_};
     f.add(counters, std::size(counters));
     return f.h;
 }

@@ -28,8 +28,9 @@ trap 'rm -rf "$work"' EXIT
 cd "$work"
 
 # Scripted screenshot: no ambient term and no overlay, as `hemirad solve -o` renders.
+# Both with the estimate of the light not yet shot (the viewer's key B on, its default).
 xvfb-run -a "$view" cornell --screenshot shot.png --after-shots 10 --width 128 --height 96 \
-    --no-ambient --no-overlay --quiet
+    --no-overlay --quiet
 "$hemirad" solve cornell --max-shots 10 -o ref.png --width 128 --height 96 --quiet \
     --discontinuities off # the viewer draws the leaves only
 # The same frame with the status line (bottom) and the help panel (top left).

@@ -236,6 +236,13 @@ int cmd_solve(int argc, char** argv) {
                      was_interrupted ? "interrupted" : to_string(solver.stop_reason()),
                      solver.shots(), solver.seconds(), solver.error_bound(), so.tolerance,
                      solver.row_sums().min, solver.row_sums().max, solver.row_sums().guarded);
+    if (!quiet && solver.unshot_fraction() >= 1e-3) {
+        const dvec3 a = h.unshot_estimate();
+        std::fprintf(stderr,
+                     "hemirad: %.2g %% of the power is not shot yet: read-outs include the "
+                     "estimate of its light, E_a = (%.4g, %.4g, %.4g) W/unit² everywhere\n",
+                     100 * solver.unshot_fraction(), a.r, a.g, a.b);
+    }
 
     // Point read-outs: by final gather unless --gather off.
     std::unique_ptr<FinalGather> gather;

@@ -72,9 +72,8 @@ RenderOptions render_options(const ImageOutputOptions& o, Solver& solver) {
     r.shading = o.shading == "flat" ? RenderOptions::Shading::Flat : RenderOptions::Shading::Smooth;
     r.patch_edges = o.patch_edges;
     r.two_sided = o.two_sided;
-    r.ambient = o.ambient;
-    if (o.ambient) r.ambient_irradiance = solver.ambient_irradiance();
-    return r;
+    (void)solver;
+    return r; // the estimate of the light not yet shot is in by default (RenderOptions::ambient)
 }
 
 /// The false-colour image: the luminance of E per pixel mapped through viridis, with a legend
@@ -119,8 +118,8 @@ void add_image_options(ArgParser& args, ImageOutputOptions& o) {
               "draw the backs of polygons (black) instead of culling them (by default a view "
               "from outside a closed room sees into it)");
     args.flag("--ambient", &o.ambient,
-              "add the ambient term rho*E_ambient to images (display only, for unconverged "
-              "solutions)");
+              "kept for scripts: images (like every read-out) include the estimate of the light "
+              "not yet shot anyway");
     args.flag("--exr-float", &o.exr_float, "write EXR with 32-bit floats (default: half)");
     args.option("--exposure", &o.exposure, "auto|auto+S|S",
                 "PNG exposure: auto (95th percentile of luminance -> 1), S stops from auto, or a "
@@ -172,13 +171,7 @@ void write_image_outputs(const ImageOutputOptions& o, Solver& solver, bool quiet
     const Hierarchy& h = solver.solution();
     SolutionRenderer renderer(scene);
     const RenderOptions ro = render_options(o, solver);
-    if (o.ambient && !quiet) {
-        const dvec3 a = ro.ambient_irradiance;
-        std::fprintf(stderr,
-                     "hemirad: images include the ambient term rho*E_a, E_a = (%.4g, %.4g, "
-                     "%.4g) W/unit² (display only; not in reports)\n",
-                     a.r, a.g, a.b);
-    }
+    (void)quiet;
     const char* shading = o.shading.c_str();
     if (!o.files.empty()) {
         ImageRGB image = renderer.render(h, camera, ro);

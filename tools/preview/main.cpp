@@ -301,7 +301,6 @@ int run(int argc, char** argv) {
     std::vector<Frame> frames;
     Progress bar(isatty(2) != 0, o.quiet);
     auto write_frame = [&] {
-        ro.ambient_irradiance = solver.ambient_irradiance();
         const ImageRGB image = renderer.render(solver.solution(), camera, ro);
         const std::string png = (dir / frame_name(solver.shots(), "png")).string();
         write_png(png, tone_map(image, tm));

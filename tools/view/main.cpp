@@ -517,7 +517,6 @@ int run(int argc, char** argv) {
             ro.patch_edges = s.edges;
             ro.two_sided = s.two_sided;
             ro.ambient = s.ambient;
-            ro.ambient_irradiance = solver.ambient_irradiance();
             const Camera cam = s.camera.camera();
             // The shooter of the last shot, on top of the scene (not depth-tested).
             std::optional<PatchAddress> shooter;
