@@ -126,6 +126,19 @@ class HEMIRAD_API FormFactorProvider {
     /// shot from the centre misrepresents what the shooter's area sees. Computed on demand
     /// from the last shoot(); 0 for providers that sample the shooter's area themselves.
     virtual double last_parallax_fraction() const { return 0; }
+    /// What a patch shooter's centre sees, measured without its form factors: the enclosed
+    /// and parallax fractions (as last_enclosed_fraction() and last_parallax_fraction() would
+    /// give after shoot()), from a coarse hemicube, so that a shooter the solver refuses costs
+    /// a fraction of a full one. Returns false where the provider has no cheaper way than
+    /// shoot() (CPU providers; a shooter whose own hemicube is no finer than the probe's).
+    struct ViewProbe {
+        double enclosed = 0;
+        double parallax = 0;
+    };
+    virtual bool probe_view(const Shooter& shooter, ViewProbe& probe) {
+        (void)shooter, (void)probe;
+        return false;
+    }
     /// The hemicube rendered by the last shoot() (GPU providers; for display and tests):
     /// width x height RGBA floats, row 0 at the bottom (GL order), laid out as
     /// gpu::HemicubeLayout (top face at (0,0) res x res, four half faces around it). Per

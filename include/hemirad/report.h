@@ -41,6 +41,13 @@ struct Probe {
 /// Deterministic for a given scene, count and seed.
 HEMIRAD_API std::vector<Probe> surface_points(const Scene& scene, std::size_t count,
                                               std::uint64_t seed = 1, int min_per_polygon = 2);
+/// `count` points drawn at random, uniformly by area over all the scene's surfaces (a
+/// polygon is drawn with probability area / total area, the point uniformly on it), for
+/// accuracy studies that should weigh every square metre alike (hemirad-bench
+/// real_building). The normal is the polygon's. Deterministic for a given scene, count and
+/// seed.
+HEMIRAD_API std::vector<Probe> random_surface_points(const Scene& scene, std::size_t count,
+                                                     std::uint64_t seed = 1);
 /// CSV rows x,y,z,nx,ny,nz with a header (the input of --probes).
 HEMIRAD_API std::string probe_points_csv(const std::vector<Probe>& probes);
 

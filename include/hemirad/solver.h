@@ -253,6 +253,8 @@ class HEMIRAD_API Solver {
     std::vector<Link> links_;
     std::vector<dvec3> luminaire_unshot_;
     bool must_split(std::uint64_t node) const;
+    /// Is the node's view unknown, or predicted near the limit of must_split()?
+    bool worth_probing(std::uint64_t node) const;
 
     /// Per node, what its hemicube showed, once measured: 0 not yet, 1 enclosed centre (always
     /// shoot the children), 2..255 its parallax fraction, P = 1e-4 * 2^((code - 2) / 16).

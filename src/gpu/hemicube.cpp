@@ -337,8 +337,11 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
             }
             const bool some_hidden = hidden_per_cluster_[std::size_t(&k - clusters_.data())] > 0;
             for (std::uint32_t i = k.begin; i < k.end; ++i) {
-                if (i == own || (some_hidden && hidden(i))) continue;
+                if (i == own) continue;
                 const Polygon& p = scene_->polygons[i];
+                if (some_hidden && hidden(i) &&
+                    !(hidden_fronts_drawn_ && glm::dot(p.normal, c - p.v[0]) > eps))
+                    continue;
                 // A two-sided surface shows the eye the side that faces it: the back of a
                 // twinned polygon is its twin's front, drawn instead (the two would z-fight).
                 if (p.twin != kNoTwin && glm::dot(p.normal, p.v[0] - c) >= 0) continue;
@@ -371,9 +374,10 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
     glFinish();
 }
 
-void HemicubeRenderer::set_hidden(const std::vector<std::uint32_t>& polygons) {
+void HemicubeRenderer::set_hidden(const std::vector<std::uint32_t>& polygons, bool fronts_drawn) {
     for (std::uint32_t p : hidden_) hidden_per_cluster_[p / kClusterSize] = 0;
     hidden_ = polygons;
+    hidden_fronts_drawn_ = fronts_drawn;
     std::sort(hidden_.begin(), hidden_.end());
     for (std::uint32_t p : hidden_) ++hidden_per_cluster_[p / kClusterSize];
 }

@@ -59,12 +59,15 @@ dvec3 hemicube_direction(const HemicubeLayout& layout, const HemicubeFrame& fram
 /// Near 0 when nothing near the shooter hides anything (a corner of an empty room: surfaces
 /// meet without jumps); near or above 1 when a large shooter sits beside a block. `rgba` is
 /// the image read back (IDs as in FormFactorProvider::HemicubeImage).
+/// With `stride` > 1 the image is read as one of res / stride pixels (near_fraction).
 double parallax_fraction(const Scene& scene, const Shooter& shooter, const HemicubeLayout& layout,
-                         const float* rgba);
+                         const float* rgba, int stride = 1);
 /// Share of a rendered hemicube (by delta form factor) that shows the front of a polygon
-/// nearer than `distance` to the eye [scene units].
+/// nearer than `distance` to the eye [scene units]. With `stride` > 1 only every stride-th
+/// pixel of every stride-th row is looked at, standing for its stride x stride block (the
+/// share of a coarser hemicube, for a fraction of the work).
 double near_fraction(const Scene& scene, const Shooter& shooter, const HemicubeLayout& layout,
-                     const float* rgba, double distance);
+                     const float* rgba, double distance, int stride = 1);
 
 class HemicubeRenderer {
   public:
@@ -82,8 +85,10 @@ class HemicubeRenderer {
                 int angle_method);
     /// Polygons that later render() calls do not draw (a cluster shooter's own polygons:
     /// they are where its light comes from, not in its way), until the next call; empty:
-    /// none but the shooter's own polygon.
-    void set_hidden(const std::vector<std::uint32_t>& polygons);
+    /// none but the shooter's own polygon. With `fronts_drawn`, those of them whose front
+    /// faces the eye are drawn all the same (a point cluster's polygons that see each other,
+    /// as in a corner: without them its light would leave through the hole they leave).
+    void set_hidden(const std::vector<std::uint32_t>& polygons, bool fronts_drawn = false);
     /// Reads the region of `layout` back: RGBA floats, row 0 at the bottom.
     void read_back(const HemicubeLayout& layout, std::vector<float>& rgba);
 
@@ -107,6 +112,7 @@ class HemicubeRenderer {
     static constexpr std::uint32_t kClusterSize = 64;
     std::vector<Cluster> clusters_;
     std::vector<std::uint32_t> hidden_;             ///< set_hidden(), sorted
+    bool hidden_fronts_drawn_ = false;              ///< set_hidden()'s fronts_drawn
     std::vector<std::uint32_t> hidden_per_cluster_; ///< of clusters_, how many are hidden
     std::vector<std::uint8_t> twinned_cluster_;     ///< of clusters_, holds a two-sided polygon
     bool hidden(std::uint32_t polygon) const {

@@ -9,7 +9,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <deque>
 #include <functional>
 #include <optional>
@@ -36,6 +35,10 @@ constexpr std::uint32_t kNearPixels = 16;
 
 /// The polygon of a luminaire's stand-in shooter: none (the renderer skips no polygon).
 constexpr std::uint32_t kNoShooterPolygon = 0xFFFFFFFFu;
+
+/// probe_view()'s hemicube resolution: 1/64 of the pixels of the default 256. The shot's own
+/// hemicube is read at the same resolution for the same measures (stride res / 32).
+constexpr int kProbeResolution = 32;
 
 class HemicubeProvider final : public FormFactorProvider {
   public:
@@ -74,12 +77,15 @@ class HemicubeProvider final : public FormFactorProvider {
     double last_backface_fraction() const override { return backface_; }
     double last_enclosed_fraction() const override {
         if (!last_layout_ || point_shot_) return backface_;
+        // Sampled as on probe_view()'s hemicube: a share, not an image, is wanted.
         return backface_ + gpu::near_fraction(*scene_, last_shooter_, *last_layout_, pixels_.data(),
-                                              0.25 * std::sqrt(last_shooter_.geometry.area));
+                                              0.25 * std::sqrt(last_shooter_.geometry.area),
+                                              last_layout_->res / kProbeResolution);
     }
     double last_parallax_fraction() const override {
         if (!last_layout_) return 0;
-        return gpu::parallax_fraction(*scene_, last_shooter_, *last_layout_, pixels_.data());
+        return gpu::parallax_fraction(*scene_, last_shooter_, *last_layout_, pixels_.data(),
+                                      last_layout_->res / kProbeResolution);
     }
     HemicubeImage last_hemicube() const override {
         if (pixels_.size() < 4 * std::size_t(last_width_) * std::size_t(last_height_) ||
@@ -100,6 +106,8 @@ class HemicubeProvider final : public FormFactorProvider {
     void shoot(const Shooter& shooter, std::vector<Link>& links) override {
         links.clear();
         timings_.clear();
+        if (probe_seconds_ > 0) timings_.push_back({"probe", probe_seconds_});
+        probe_seconds_ = 0;
         ++stamp_;
         const gpu::HemicubeLayout& layout = layout_for(shooter);
         auto t0 = Clock::now();
@@ -118,6 +126,30 @@ class HemicubeProvider final : public FormFactorProvider {
         t0 = Clock::now();
         reduce(shooter, layout, links);
         timings_.push_back({"reduce", since(t0)});
+    }
+
+    // A coarse hemicube (kProbeResolution) at the shooter's centre: the fractions that decide
+    // whether it may shoot. The parallax and near-surface measures are sums of form factor
+    // over silhouettes and surfaces, nearly independent of the resolution.
+    bool probe_view(const Shooter& shooter, ViewProbe& probe) override {
+        if (resolution_for(shooter) <= kProbeResolution) return false;
+        const gpu::HemicubeLayout& layout = layout_of(kProbeResolution);
+        const auto t0 = Clock::now();
+        // Without corners the fragment shader computes no form factor: IDs only.
+        Shooter ids_only = shooter;
+        ids_only.geometry.count = 0;
+        renderer_->render(ids_only, layout, options_.lod_bias, 0);
+        renderer_->read_back(layout, probe_pixels_);
+        double backface = 0;
+        const std::size_t n = std::size_t(layout.width) * layout.height;
+        for (std::size_t i = 0; i < n; ++i)
+            if (probe_pixels_[4 * i + 2] < -0.5f) backface += layout.delta_ff[i];
+        probe.enclosed =
+            backface + gpu::near_fraction(*scene_, shooter, layout, probe_pixels_.data(),
+                                          0.25 * std::sqrt(shooter.geometry.area));
+        probe.parallax = gpu::parallax_fraction(*scene_, shooter, layout, probe_pixels_.data());
+        probe_seconds_ += since(t0);
+        return true;
     }
 
     // A luminaire shoots from its position over the whole sphere (shoot_sphere), with its
@@ -184,7 +216,7 @@ class HemicubeProvider final : public FormFactorProvider {
         s.front_only = back < 1e-3;
         const double scale = s.front_only ? 1.0 / std::max(1.0 - back, 1e-12) : 1.0;
         s.intensity = [&c, scale](const dvec3& d) { return c.intensity(d) * scale; };
-        renderer_->set_hidden(c.members);
+        renderer_->set_hidden(c.members, true);
         hidden_ = &c.members;
         shoot_sphere(s, res, links);
         hidden_ = nullptr;
@@ -656,6 +688,8 @@ class HemicubeProvider final : public FormFactorProvider {
     std::vector<std::uint64_t> base_;
     std::vector<float> pixels_, pixel_sum_, analytic_, area_;
     std::vector<std::uint32_t> pixel_count_; ///< per node seen, its pixels in this shot
+    std::vector<float> probe_pixels_;        ///< probe_view()'s coarse hemicube
+    double probe_seconds_ = 0;               ///< probe_view()s since the last shot's timings
     std::vector<float> pixels_back_;         ///< a point shot's hemicube against the aim
     const Sphere* point_ = nullptr;          ///< during shoot_sphere(): the point shot
     /// During a shot's linking: the visibility of its hemicubes (against and along the axis;

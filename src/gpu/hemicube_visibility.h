@@ -65,6 +65,7 @@ template <class Mark> void HemicubeVisibility::occlusion_edges(Mark mark) const 
         };
         const auto test = [&](int i0, int j0, int i1, int j1) {
             const std::size_t a = at(i0, j0), b = at(i1, j1);
+            if (rgba_[4 * a + 2] == rgba_[4 * b + 2]) return; // the same polygon, same side
             const long pa = shown(a), pb = shown(b);
             if (pa == pb) return;
             // Each way: a front of P at one pixel, something else at its neighbour.

@@ -265,6 +265,28 @@ PatchAddress Solver::shoot_patch(std::uint32_t polygon, ShotRecord& rec, dvec3& 
         const double total = sum(unshot_power());
         shooter.power_fraction = total > 0 ? std::min(1.0, shooter.unshot_power / total) : 1.0;
 
+        // A node whose view nothing is known of yet, or whose predicted view is near the
+        // limit, is measured on a coarse hemicube first, where the provider has one: a
+        // refused node then costs a fraction of a shot. Other nodes with a predicted view
+        // (nearly all are accepted) are measured on their own hemicube after the shot.
+        const bool inner = int(sa.level) < hierarchy_.depth(polygon);
+        if (inner) {
+            const std::uint64_t id = hierarchy_.node_id(sa);
+            FormFactorProvider::ViewProbe probe;
+            t0 = Clock::now();
+            if (worth_probing(id) && provider_->probe_view(shooter, probe)) {
+                view_[id] = probe.enclosed > options_.enclosed_fraction
+                                ? kViewEnclosed
+                                : parallax_code(probe.parallax);
+                learned_.emplace_back(id, view_[id]);
+            }
+            rec.t_form_factors += since(t0);
+            if (measured(view_[id]) && must_split(id)) {
+                ++rec.refined;
+                continue;
+            }
+        }
+
         // 2. Form factors F(j -> S) for every receiving node.
         t0 = Clock::now();
         provider_->shoot(shooter, links_);
@@ -281,9 +303,9 @@ PatchAddress Solver::shoot_patch(std::uint32_t polygon, ShotRecord& rec, dvec3& 
         // An enclosed centre would lose the patch's power, and a centre beside a near
         // occluder would misplace it (parallax): shoot the children instead.
         rec.parallax = -1;
-        if (int(sa.level) < hierarchy_.depth(polygon)) {
+        if (inner) {
             const std::uint64_t id = hierarchy_.node_id(sa);
-            if (!measured(view_[id])) {
+            if (!measured(view_[id])) { // no probe: measured on the shot's own hemicube
                 view_[id] = provider_->last_enclosed_fraction() > options_.enclosed_fraction
                                 ? kViewEnclosed
                                 : parallax_code(provider_->last_parallax_fraction());
@@ -520,11 +542,13 @@ bool Solver::shoot_cluster(ShotRecord& rec, std::uint32_t& polygon) {
         rec.shooter = {c.members.front(), 0, 0};
         rec.shooter_power = weight;
         rec.links = links_.size();
-        deliver(power, 1.0, rec);
+        // Its polygons' unshot light is cleared first: those that see each other (a corner)
+        // receive some of it back.
         t0 = Clock::now();
         for (std::uint32_t m : c.members)
             if (sum(hierarchy_.unshot_power(m)) > 0) hierarchy_.clear_unshot({m, 0, 0});
         rec.t_update += since(t0);
+        deliver(power, 1.0, rec);
         last_polygon_ = -1;
         return true;
     }
@@ -571,6 +595,15 @@ void Solver::finish_shot(ShotRecord& rec, Clock::time_point t_start) {
     rec.error_bound = error_bound();
     last_ = std::move(rec);
     round_.push_back(last_);
+}
+
+bool Solver::worth_probing(std::uint64_t node) const {
+    const std::uint8_t code = view_[node];
+    if (code == kViewUnknown) return true;
+    if (measured(code) || options_.shooter_parallax <= 0) return false;
+    const Hierarchy::Node& n = hierarchy_.nodes()[node];
+    const double power = double(n.dB.x + n.dB.y + n.dB.z) * double(n.area);
+    return code_parallax(code) * power > 0.25 * options_.shooter_parallax * sum(emitted_);
 }
 
 bool Solver::must_split(std::uint64_t node) const {

@@ -42,6 +42,26 @@ std::vector<Probe> surface_points(const Scene& scene, std::size_t count, std::ui
     return out;
 }
 
+std::vector<Probe> random_surface_points(const Scene& scene, std::size_t count,
+                                         std::uint64_t seed) {
+    std::vector<double> cdf;
+    cdf.reserve(scene.polygons.size());
+    double total = 0;
+    for (const Polygon& poly : scene.polygons) cdf.push_back(total += poly.area);
+    std::vector<Probe> out;
+    if (!(total > 0)) return out;
+    Rng rng(splitmix64(seed));
+    for (std::size_t k = 0; k < count; ++k) {
+        const double x = rng.uniform() * total;
+        const std::size_t p = std::min<std::size_t>(
+            std::size_t(std::upper_bound(cdf.begin(), cdf.end(), x) - cdf.begin()), cdf.size() - 1);
+        const Polygon& poly = scene.polygons[p];
+        const double pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+        out.push_back({area_point(poly.v.data(), poly.count, pick, u1, u2), poly.normal});
+    }
+    return out;
+}
+
 std::string probe_points_csv(const std::vector<Probe>& probes) {
     std::ostringstream s;
     s.precision(12);

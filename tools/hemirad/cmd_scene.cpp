@@ -35,17 +35,29 @@ int cmd_scene(int argc, char** argv) {
     args.option("--surface-points", &points, "N",
                 "write about N points spread over every polygon (x,y,z,nx,ny,nz; the input of "
                 "--probes) to --points-out");
-    args.option("--points-out", &points_out, "FILE.csv", "where --surface-points go");
+    long random_points = 0;
+    args.option("--random-points", &random_points, "N",
+                "write N points drawn at random, uniformly by area over all surfaces (x,y,z,"
+                "nx,ny,nz) to --points-out");
+    args.option("--points-out", &points_out, "FILE.csv",
+                "where --surface-points or --random-points go");
     add_scene_options(args, builtin, obj);
     if (!args.parse(argc, argv, 2)) return 0;
-    if ((points > 0) != !points_out.empty())
-        throw InputError("--surface-points N and --points-out FILE.csv go together");
+    if (points > 0 && random_points > 0)
+        throw InputError("--surface-points and --random-points: give one of them");
+    if ((points > 0 || random_points > 0) != !points_out.empty())
+        throw InputError("--surface-points N (or --random-points N) and --points-out FILE.csv "
+                         "go together");
     if (points < 0 || points > 100'000'000)
         throw InputError("--surface-points " + std::to_string(points) + " must be in 1..1e8");
+    if (random_points < 0 || random_points > 100'000'000)
+        throw InputError("--random-points " + std::to_string(random_points) + " must be in 1..1e8");
 
     const Scene scene = load_scene(name, builtin, obj);
-    if (points > 0) {
-        const std::vector<Probe> probes = surface_points(scene, std::size_t(points));
+    if (points > 0 || random_points > 0) {
+        const std::vector<Probe> probes =
+            points > 0 ? surface_points(scene, std::size_t(points))
+                       : random_surface_points(scene, std::size_t(random_points));
         write_text_file(points_out, probe_points_csv(probes));
         std::fprintf(stderr, "hemirad: wrote %zu surface points to %s\n", probes.size(),
                      points_out.c_str());
