@@ -112,10 +112,10 @@ const char* kTwoQuadsObj = "mtllib m.mtl\nusemtl white\n"
 
 TEST(TwoSided, TwinHasReversedCornersOppositeNormalSameMaterialAndGroup) {
     Builder b;
-    b.floor(0, 2, 0, 1, 0, "floor");                                  // quad 0
+    b.floor(0, 2, 0, 1, 0, "floor"); // quad 0
     ASSERT_EQ(add_polygon(b.scene, {{0, 1, 0}, {1, 1, 0}, {0, 2, 0}}, 1, b.group("tri")).added,
-              1); // triangle 1, facing +z, the emitting material
-    b.floor(0, 1, 0, 1, 3, "other");                                  // quad 2, not picked
+              1);                    // triangle 1, facing +z, the emitting material
+    b.floor(0, 1, 0, 1, 3, "other"); // quad 2, not picked
     const std::size_t added = make_two_sided(b.scene, [](std::uint32_t p) { return p != 2; });
     ASSERT_EQ(added, 2u);
     const Scene& s = b.scene;
