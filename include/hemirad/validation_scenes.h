@@ -64,6 +64,28 @@ HEMIRAD_API Scene make_cie58_cube(double rho, double side = 4.0, double exitance
 /// ceiling, light. The built-in scene "room" (1 m, rho 0.5).
 HEMIRAD_API Scene make_light_room(double rho = 0.5, double side = 1.0, double exitance = 1.0);
 
+/// Closed cavities in a lit room, for leak tests: light must not reach where no light can go.
+/// The room is make_light_room's (side kCavityRoomSide, every surface reflectance `rho`, the
+/// small light under the middle of the ceiling, exitance 1), the floor one polygon from wall to
+/// wall, and in it:
+///   - "slab": a thick wall slab, a closed box (faces outwards) standing on the floor, which
+///     runs on underneath it (the floor under the slab is a closed cavity);
+///   - "sunk": a closed box sunk half into the floor (its faces below the floor and the floor
+///     inside it are in the dark);
+///   - "hollow": a closed box (faces outwards) floating above the floor, with "inner", a
+///     smaller box inside it whose faces point inwards (a closed, unlit room in a closed box).
+/// With `split` the polygons that others pass through are cut where they meet
+/// (split_intersections, as the loaders do by default). Groups: floor, wall_x0, wall_x1,
+/// wall_z0, wall_z1, ceiling, light, slab, sunk, hollow, inner. Metres, y up.
+struct CavityRoom {
+    static constexpr double side = 2.0; ///< the room is [0, side]^3
+    static constexpr dvec3 slab_lo{0.3, 0.0, 0.4}, slab_hi{0.5, 1.2, 1.6};
+    static constexpr dvec3 sunk_lo{1.3, -0.25, 0.3}, sunk_hi{1.7, 0.25, 0.7};
+    static constexpr dvec3 hollow_lo{1.2, 0.3, 1.2}, hollow_hi{1.7, 0.8, 1.7};
+    static constexpr dvec3 inner_lo{1.3, 0.4, 1.3}, inner_hi{1.6, 0.7, 1.6};
+};
+HEMIRAD_API Scene make_cavity_room(double rho = 0.5, bool split = true);
+
 /// A furnished room in the manner of paper 002 §5 (Figure 3): walls, floor, ceiling,
 /// rectangular lights under the ceiling, and "sets" of one table (top + 4 legs) with four
 /// chairs (seat, back, 4 legs), each part a box of 6 quads, plus `cabinets` extra boxes

@@ -147,6 +147,31 @@ Scene make_light_room(double rho, double side, double exitance) {
     return b.finish("room", dvec3(c, 0.55 * side, 0.02 * side), dvec3(c, 0.45 * side, side));
 }
 
+Scene make_cavity_room(double rho, bool split) {
+    if (!(rho >= 0 && rho < 1)) throw InputError("cavity room: rho must be in [0, 1)");
+    using C = CavityRoom;
+    Builder b;
+    const auto wall = b.material("wall", rho);
+    const auto light = b.material("light", rho, 1.0);
+    const double S = C::side;
+    b.room(S, S, S, wall, wall, wall, nullptr, false);
+    const double c = S / 2, w = S / 10, y = S - S / 1000;
+    b.horizontal(c - w, c + w, c - w, c + w, y, -1, light, b.group("light"));
+    b.box(C::slab_lo, C::slab_hi, wall, b.group("slab"));
+    b.box(C::sunk_lo, C::sunk_hi, wall, b.group("sunk"));
+    b.box(C::hollow_lo, C::hollow_hi, wall, b.group("hollow"));
+    // The inner box faces inwards: its six faces, each turned about (corners reversed).
+    const std::size_t first = b.scene.polygons.size();
+    b.box(C::inner_lo, C::inner_hi, wall, b.group("inner"));
+    for (std::size_t p = first; p < b.scene.polygons.size(); ++p) {
+        Polygon& q = b.scene.polygons[p];
+        std::reverse(q.v.begin() + 1, q.v.begin() + q.count);
+        q.normal = -q.normal;
+    }
+    if (split) split_intersections(b.scene);
+    return b.finish("cavity_room", dvec3(c, 0.55 * S, 0.02 * S), dvec3(c, 0.45 * S, S));
+}
+
 int bench_room_polygons(const BenchRoomOptions& o) {
     return 6 + o.lights + 174 * o.sets + 6 * o.cabinets;
 }
