@@ -27,6 +27,8 @@
 
 #include "hemirad/gl/context.h"
 #include "hemirad/readout.h"
+#include "hemirad/reference.h"
+#include "hemirad/report.h"
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"
 #include "hemirad/validation_scenes.h"
@@ -141,13 +143,33 @@ TEST_P(Sphere, UniformIrradiance) {
                 s.shots(), s.error_bound(), 100 * escaped, s.seconds());
     row("sphere", "rho " + std::to_string(rho).substr(0, 4) + " <H> all", H,
         irradiance_sum(h) / As);
-    // Per group: the wall within 1 %; the cap (3 of 16 rings around the pole, fanned into
-    // thin triangles) deviates by the tessellation caveat above: measured -2.4 % at 16
-    // rings and -1.1 % at 32 (hemirad solve sphere --rings N --rho 0.5), so 3 % here.
+    // Per group: the wall within 1 % of the formula. The cap (3 of 16 rings around the pole,
+    // fanned into thin triangles) deviates from it by the tessellation caveat above, so it is
+    // compared with the path-traced reference's mean over random points on it (uniform by
+    // area, as the group average is: 2.0 % under the formula, standard error 0.4 %), within
+    // 2 % plus three standard errors of that mean.
     for (std::uint32_t g = 0; g < scene.groups.size(); ++g) {
         const bool cap = scene.groups[g] == "cap";
-        row("sphere", "rho " + std::to_string(rho).substr(0, 4) + " <H> " + scene.groups[g], H,
-            group_irradiance(h, g).E_avg.x, cap ? 0.03 : kTolerance);
+        double expected = H, tolerance = kTolerance;
+        if (cap) {
+            std::vector<Probe> on_cap;
+            for (const Probe& p : random_surface_points(scene, 3000)) {
+                const auto sp = find_surface(scene, p.position, p.normal);
+                if (sp && scene.polygons[sp->polygon].group == g) on_cap.push_back(p);
+            }
+            ASSERT_GT(on_cap.size(), 100u);
+            ReferenceOptions ro;
+            ro.samples = 1024;
+            double sum = 0, sum2 = 0;
+            for (const ReferenceValue& r : reference_irradiance(scene, on_cap, ro))
+                sum += r.E.x, sum2 += r.E.x * r.E.x;
+            const double n = double(on_cap.size());
+            expected = sum / n;
+            const double sem = std::sqrt(std::max(sum2 / n - expected * expected, 0.0) / n);
+            tolerance = 0.02 + 3 * sem / expected;
+        }
+        row("sphere", "rho " + std::to_string(rho).substr(0, 4) + " <H> " + scene.groups[g],
+            expected, group_irradiance(h, g).E_avg.x, tolerance);
     }
     EXPECT_LT(escaped, kTolerance) << "closed: nothing should escape";
 }

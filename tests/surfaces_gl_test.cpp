@@ -163,6 +163,12 @@ TEST(TwoSidedPlate, LeafReadOutsOfBothFacesAgreeWithTheReference) {
     // reads 6 % low (its indirect part halved too). Not the twins: a one-sided plate facing
     // down (no twin) reads 0.00239 against 0.00445 +- 0.00006 (hemicube 0.00401). Untwinned
     // room surfaces in the same scene are within 1-3 %. Remove the skip when fixed.
+    // Cause (traced in the solver's deliveries): once the walls' light is spread thin, a wall
+    // shoots whole (level 0) from its centre, which lies in the plate's plane: its hemicube
+    // sees the plate edge-on, so the plate gets none of the light the wall's lower half sends
+    // it (0.5 % of a wall's power instead of 1.7 % with --shooter-parallax 0 or --flat, which
+    // read within 2 %). The parallax measure sees no silhouette there. A polygon whose plane
+    // cuts a shooter in front of it should refuse the shooter, as parallax does.
     GTEST_SKIP() << "engine bug: the plate's downward face reads ~50 % low (hybrid)";
     ASSERT_TRUE(ensure_context());
     const Scene scene = plate_room(true);
@@ -367,12 +373,8 @@ TEST(Clusters, OnAndOffAgreeInASmallFurnace) {
 // clusters off cannot converge here in reasonable time on llvmpipe), nothing escapes (under
 // 1 %).
 TEST(Clusters, FurnaceOfManySmallQuadsConvergesToEOverOneMinusRho) {
-    // BUG (engine, clusters): cluster shots lose light out of a closed box. Escaped share of
-    // the emitted power in this furnace (rho 0.5, error bound 0.01) with clusters on, by
-    // polygons: 54: 0.36 %, 96: 0.77 %, 216: 1.7 %, 600: 2.1 %, 1536: 3.4 % (clusters off:
-    // under 0.1 % throughout); <H> reads 1.933 for 1536 polygons, 3.4 % under the exact 2,
-    // where the error bound allows 0.5 %. Remove the skip when fixed.
-    GTEST_SKIP() << "engine bug: cluster shots let up to 3.4 % of the light escape a closed box";
+    // Before point clusters drew those of their own polygons that face their centre, light
+    // left through the hole they left: 3.4 % escaped here, <H> read 1.933.
     ASSERT_TRUE(ensure_context());
     double escaped = 0;
     long cluster_shots = 0;

@@ -36,9 +36,9 @@ constexpr std::uint32_t kNearPixels = 16;
 /// The polygon of a luminaire's stand-in shooter: none (the renderer skips no polygon).
 constexpr std::uint32_t kNoShooterPolygon = 0xFFFFFFFFu;
 
-/// probe_view()'s hemicube resolution: 1/64 of the pixels of the default 256. The shot's own
-/// hemicube is read at the same resolution for the same measures (stride res / 32).
-constexpr int kProbeResolution = 32;
+/// probe_view()'s hemicube resolution: 1/16 of the pixels of the default 256. The shot's own
+/// hemicube is read at the same resolution for the same measures (stride res / 64).
+constexpr int kProbeResolution = 64;
 
 class HemicubeProvider final : public FormFactorProvider {
   public:

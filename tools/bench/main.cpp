@@ -38,6 +38,7 @@
 #include "hemirad/solver.h"
 #include "hemirad/validation_scenes.h"
 #include "mpi_scaling.h"
+#include "point_stats.h"
 #include "real_building.h"
 
 // The bare hemicube is measured with the renderer itself where the build exposes src/ to
@@ -215,17 +216,8 @@ struct Sums {
     double links = 0;
 };
 
-double luminance(const dvec3& e) {
-    return 0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z;
-}
-
-double percentile(std::vector<double> v, double q) {
-    if (v.empty()) return 0;
-    std::sort(v.begin(), v.end());
-    const double k = q * double(v.size() - 1);
-    const std::size_t lo = std::size_t(k), hi = std::min(lo + 1, v.size() - 1);
-    return v[lo] + (v[hi] - v[lo]) * (k - double(lo));
-}
+using bench::luminance;
+using bench::percentile;
 
 // Accuracy at points: ~400 points on every surface (surface_points), the reference at 32768
 // paths per point (sem ~0.3 % of E_Y), then for each setting: solve to 1e-3, read the points

@@ -19,29 +19,18 @@
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"
 #include "hemirad/validation_scenes.h"
+#include "point_stats.h"
 
 namespace hemirad::bench {
 
 namespace {
 
-double luminance(const dvec3& e) {
-    return 0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z;
-}
-
-double percentile(std::vector<double> v, double q) {
-    if (v.empty()) return 0;
-    std::sort(v.begin(), v.end());
-    const double k = q * double(v.size() - 1);
-    const std::size_t lo = std::size_t(k), hi = std::min(lo + 1, v.size() - 1);
-    return v[lo] + (v[hi] - v[lo]) * (k - double(lo));
-}
-
 struct Building {
     std::string name;
     std::function<Scene()> scene;
-    std::size_t points;       ///< random surface points
-    std::uint64_t samples;    ///< reference paths per point
-    std::uint64_t seed;       ///< of the points
+    std::size_t points;    ///< random surface points
+    std::uint64_t samples; ///< reference paths per point
+    std::uint64_t seed;    ///< of the points
 };
 
 // Solve with the default options (as `hemirad solve SCENE --probes P --probe-out O`), read
@@ -151,8 +140,8 @@ void run_real_building(const std::string& office_glb) {
         {"courtyard", [] { return validation::make_courtyard(); }, 400, 65536, 7},
     };
     if (!office_glb.empty() && std::filesystem::exists(office_glb))
-        buildings.push_back({"office", [office_glb] { return load_scene(office_glb); }, 1000,
-                             65536, 7});
+        buildings.push_back(
+            {"office", [office_glb] { return load_scene(office_glb); }, 1000, 65536, 7});
     else
         std::fprintf(stderr, "real_building: no office glb (%s): the courtyard only\n",
                      office_glb.empty() ? "not given" : office_glb.c_str());
