@@ -156,20 +156,10 @@ TEST(TwoSidedPlate, OneSidedBackIsNoSurface) {
 // The solution itself (the leaf read-out, as images and lightmaps show it) on both faces.
 // Tolerance as above, for the bilinear read-out between leaves of 2.7 cm on smooth light.
 TEST(TwoSidedPlate, LeafReadOutsOfBothFacesAgreeWithTheReference) {
-    // BUG (engine, hybrid provider): the downward face of the plate, lit only by light
-    // reflected from below, receives about half its light. Measured (this scene, tolerance
-    // 1e-3): plate bottom centre 0.00232 with --ff hybrid and analytic, 0.00391 with hemicube,
-    // against the reference's 0.00465 +- 0.00007 and the final gather's 0.00478; the top face
-    // reads 6 % low (its indirect part halved too). Not the twins: a one-sided plate facing
-    // down (no twin) reads 0.00239 against 0.00445 +- 0.00006 (hemicube 0.00401). Untwinned
-    // room surfaces in the same scene are within 1-3 %. Remove the skip when fixed.
-    // Cause (traced in the solver's deliveries): once the walls' light is spread thin, a wall
-    // shoots whole (level 0) from its centre, which lies in the plate's plane: its hemicube
-    // sees the plate edge-on, so the plate gets none of the light the wall's lower half sends
-    // it (0.5 % of a wall's power instead of 1.7 % with --shooter-parallax 0 or --flat, which
-    // read within 2 %). The parallax measure sees no silhouette there. A polygon whose plane
-    // cuts a shooter in front of it should refuse the shooter, as parallax does.
-    GTEST_SKIP() << "engine bug: the plate's downward face reads ~50 % low (hybrid)";
+    // Until shooters cut by a polygon's plane were refined (solver/plane_cuts.h) the downward
+    // face read about half its light: a wall that shot whole from its centre, in the plate's
+    // plane, saw the plate edge-on and sent it nothing (0.00232 against the reference's
+    // 0.00465 +- 0.00007).
     ASSERT_TRUE(ensure_context());
     const Scene scene = plate_room(true);
     const auto ref = reference_at(scene, kPlatePoints, 16384);

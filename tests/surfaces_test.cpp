@@ -21,6 +21,7 @@
 #include "hemirad/readout.h"
 #include "hemirad/scene.h"
 #include "hemirad/scene_io.h"
+#include "solver/plane_cuts.h"
 
 using namespace hemirad;
 namespace fs = std::filesystem;
@@ -433,4 +434,39 @@ TEST_F(Files, LoadersCutByDefaultWithAWarningAndNotWhenOff) {
     o.two_sided_surfaces = true;
     const Scene both = load_obj(obj, o);
     EXPECT_EQ(both.polygons.size(), 8u);
+}
+
+// --- plane cuts (solver/plane_cuts.h) ------------------------------------------------------
+
+// A wall z = 0 (1 x 1, facing +z) and a plate floating in front of it at height 0.5, 0.3 to
+// 0.7 from it, facing down: the plate's plane y = 0.5 cuts the wall through the middle.
+TEST(PlaneCuts, APlateFloatingBesideAWallCutsItsMiddle) {
+    Builder b;
+    b.wall_z(0, 1, 0, 1, 0, "wall");
+    b.quad({{0.3, 0.5, 0.3}, {0.7, 0.5, 0.3}, {0.7, 0.5, 0.7}, {0.3, 0.5, 0.7}}, "plate");
+    ASSERT_LT(b.scene.polygons[1].normal.y, 0); // facing down
+    const PlaneCuts cuts(b.scene, 1.0);
+    EXPECT_EQ(cuts.polygons_cut(), 1u); // the wall; the wall's plane does not cut the plate
+    const Polygon& wall = b.scene.polygons[0];
+    // The whole wall: the plate is 0.3 from its centre, 0.4 x 0.4: share A / (pi d^2) with d
+    // from the wall's centre (0.5, 0.5, 0) to the plate's (0.5, 0.5, 0.5).
+    const double whole = cuts.cut_share(0, patch_geometry(wall, 0, 0));
+    EXPECT_NEAR(whole, 0.16 / (std::numbers::pi * 0.25), 1e-9);
+    // Its four quarters end at y = 0.5: none is cut (the plane only touches them).
+    for (std::uint32_t i = 0; i < 4; ++i)
+        EXPECT_EQ(cuts.cut_share(0, patch_geometry(wall, 1, i)), 0.0) << i;
+    // The plate's plane does not cut the plate, nor does anything else.
+    EXPECT_EQ(cuts.cut_share(1, patch_geometry(b.scene.polygons[1], 0, 0)), 0.0);
+}
+
+// Only polygons within reach (reach times the shooter's size) and in front of it count.
+TEST(PlaneCuts, FarOrBehindPolygonsDoNotCut) {
+    Builder b;
+    b.wall_z(0, 1, 0, 1, 0, "wall");
+    // The same plate 5 from the wall (beyond reach 1 x size 1), and one behind the wall.
+    b.quad({{0.3, 0.5, 5.3}, {0.7, 0.5, 5.3}, {0.7, 0.5, 5.7}, {0.3, 0.5, 5.7}}, "far");
+    b.quad({{0.3, 0.5, -0.7}, {0.7, 0.5, -0.7}, {0.7, 0.5, -0.3}, {0.3, 0.5, -0.3}}, "behind");
+    const PlaneCuts cuts(b.scene, 1.0);
+    EXPECT_EQ(cuts.cut_share(0, patch_geometry(b.scene.polygons[0], 0, 0)), 0.0);
+    EXPECT_EQ(cuts.polygons_cut(), 0u);
 }

@@ -113,6 +113,7 @@ enum class StopReason { Running, Converged, MaxShots, TimeLimit, NothingToShoot 
 HEMIRAD_API const char* to_string(StopReason r);
 
 class ClusterTree;
+class PlaneCuts;
 
 class HEMIRAD_API Solver {
   public:
@@ -255,11 +256,15 @@ class HEMIRAD_API Solver {
     bool must_split(std::uint64_t node) const;
     /// Is the node's view unknown, or predicted near the limit of must_split()?
     bool worth_probing(std::uint64_t node) const;
+    /// Does the plane of a polygon in front of the node pass through it, near enough and
+    /// with enough of the node's power to matter (plane_cuts.h)?
+    bool cut_by_plane(const PatchAddress& a) const;
 
     /// Per node, what its hemicube showed, once measured: 0 not yet, 1 enclosed centre (always
     /// shoot the children), 2..255 its parallax fraction, P = 1e-4 * 2^((code - 2) / 16).
     std::vector<std::uint8_t> view_;
     std::vector<std::pair<std::uint64_t, std::uint8_t>> learned_; ///< view_ codes of this shot
+    std::unique_ptr<PlaneCuts> plane_cuts_;                       ///< null: no shooter refinement
     std::unique_ptr<ClusterTree> clusters_;  ///< null: clusters off (or a CPU provider)
     std::vector<double> cluster_power_;      ///< per cluster node, unshot power summed over RGB
     std::vector<std::uint8_t> cluster_view_; ///< per cluster node, a view code (as view_)

@@ -10,6 +10,7 @@
 #include "hemirad/memory_guard.h"
 #include "hemirad/solver_options.h"
 #include "solver/cluster_tree.h"
+#include "solver/plane_cuts.h"
 #include "solver/solver_detail.h"
 
 namespace hemirad {
@@ -100,6 +101,8 @@ void Solver::init() {
         cluster_power_.assign(clusters_->nodes().size(), 0.0);
         cluster_view_.assign(clusters_->nodes().size(), kViewUnknown);
     }
+    // Polygons whose plane cuts a shooter: the hemicube shows them edge-on (plane_cuts.h).
+    if (options_.shooter_parallax > 0) plane_cuts_ = std::make_unique<PlaneCuts>(*scene_, 1.0);
     emitted_ = scene_->emitted_power();
     luminaire_unshot_.clear();
     for (const Luminaire& l : scene_->luminaires) luminaire_unshot_.push_back(dvec3(l.power()));
@@ -161,8 +164,9 @@ PatchAddress Solver::select_shooter(std::uint32_t polygon) {
     PatchAddress a{polygon, 0, 0};
     while (int(a.level) < depth) {
         const std::uint64_t id = hierarchy_.node_id(a);
-        const bool split = must_split(id);
-        if (split && view_[id] != kViewEnclosed) {
+        const bool refused = must_split(id);
+        const bool split = refused || cut_by_plane(a);
+        if (refused && view_[id] != kViewEnclosed) {
             // Refused for parallax: the children, half as large, inherit half its share (a
             // prediction that spares rendering a hemicube only to refuse it).
             const std::uint8_t predicted = parallax_code(0.5 * code_parallax(view_[id]), true);
@@ -595,6 +599,16 @@ void Solver::finish_shot(ShotRecord& rec, Clock::time_point t_start) {
     rec.error_bound = error_bound();
     last_ = std::move(rec);
     round_.push_back(last_);
+}
+
+bool Solver::cut_by_plane(const PatchAddress& a) const {
+    if (!plane_cuts_) return false;
+    const Polygon& poly = scene_->polygons[a.polygon];
+    const double share = plane_cuts_->cut_share(a.polygon, patch_geometry(poly, a.level, a.index));
+    if (share <= 0) return false;
+    const Hierarchy::Node& n = hierarchy_.node(a);
+    const double power = double(n.dB.x + n.dB.y + n.dB.z) * double(n.area);
+    return share * power > options_.shooter_parallax * sum(emitted_);
 }
 
 bool Solver::worth_probing(std::uint64_t node) const {
