@@ -36,11 +36,11 @@ class PlaneCuts {
     };
     const Scene* scene_;
     double reach_;
-    double eps_;                                   ///< plane tolerance [unit]
-    std::vector<Plane> planes_;                    ///< per polygon
-    std::vector<dvec3> lo_, hi_;                   ///< per polygon, its bounds
-    std::vector<std::uint32_t> first_;             ///< per polygon + 1: into cutters_
-    std::vector<std::uint32_t> cutters_;           ///< candidates, by polygon
+    double eps_;                         ///< plane tolerance [unit]
+    std::vector<Plane> planes_;          ///< per polygon
+    std::vector<dvec3> lo_, hi_;         ///< per polygon, its bounds
+    std::vector<std::uint32_t> first_;   ///< per polygon + 1: into cutters_
+    std::vector<std::uint32_t> cutters_; ///< candidates, by polygon
 };
 
 } // namespace hemirad
