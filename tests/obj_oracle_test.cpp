@@ -168,7 +168,9 @@ std::string compare(const fs::path& obj, bool& compared) {
     compared = false;
     Scene scene;
     try {
-        scene = load_obj(obj.string());
+        ObjOptions as_written; // the reader alone, polygons not cut where others stand
+        as_written.split_intersections = false;
+        scene = load_obj(obj.string(), as_written);
     } catch (const InputError& e) {
         return std::string("refused by hemirad (") + e.what() + "): not compared";
     }

@@ -354,6 +354,14 @@ TEST(Corpus, TexturesAndTransparencyAreWarned) {
 
 // --- Real files from elsewhere (../shared/scenes, not part of the repository) --------------
 
+// The reader alone: polygons as the file has them, not cut where others stand on them (the
+// Cornell box's blocks on its floor; split_intersections' own tests are in surfaces_test.cpp).
+ObjOptions as_written() {
+    ObjOptions o;
+    o.split_intersections = false;
+    return o;
+}
+
 fs::path shared_scenes() {
     return fs::path(HEMIRAD_SOURCE_DIR) / ".." / "shared" / "scenes";
 }
@@ -362,9 +370,14 @@ TEST(SharedScenes, McGuireCornellBox) {
     const fs::path obj = shared_scenes() / "mcguire-cornell" / "CornellBox-Original.obj";
     if (!fs::exists(obj))
         GTEST_SKIP() << obj << " is absent (files from elsewhere, not in the repository)";
-    const Scene s = load_obj(obj.string());
+    const Scene s = load_obj(obj.string(), as_written());
     // 16 faces less the two box bottoms that repeat a side face, one split quad: 17 polygons.
     EXPECT_EQ(s.polygons.size(), 17u);
+    // By default the floor is cut along the blocks' footprints (they stand on it), the same
+    // area in more polygons, the footprints among them.
+    const Scene cut = load_obj(obj.string());
+    EXPECT_GT(cut.polygons.size(), s.polygons.size());
+    EXPECT_NEAR(cut.total_area(), s.total_area(), 1e-9 * s.total_area());
     EXPECT_EQ(s.triangle_count(), 2u);
     EXPECT_NEAR(s.emitted_power().x, 17 * std::numbers::pi * 0.47 * 0.38, 1e-9);
     expect_warning(s, "CornellBox-Original.obj:12: material library "
@@ -425,7 +438,7 @@ TEST_P(BuiltinAsObj, ReadsBackAsTheSameScene) {
     fs::create_directories(dir);
     const std::string obj = (dir / "scene.obj").string();
     EXPECT_EQ(write_obj(s, obj), (dir / "scene.mtl").string());
-    Scene r = load_obj(obj);
+    Scene r = load_obj(obj, as_written());
     fs::remove_all(dir);
     ASSERT_EQ(r.polygons.size(), s.polygons.size());
     // A file numbers groups in order of first use (the sphere's cap comes first): renumber
@@ -452,7 +465,7 @@ class Assets : public ::testing::TestWithParam<const char*> {};
 // changes, run the script again.
 TEST_P(Assets, FileIsTheBuiltinScene) {
     const std::string path = std::string(HEMIRAD_SOURCE_DIR) + "/assets/" + GetParam() + ".obj";
-    const Scene a = load_obj(path);
+    const Scene a = load_obj(path, as_written());
     const Scene b = make_builtin(GetParam());
     EXPECT_EQ(a.content_hash(), b.content_hash())
         << path << " differs from the built-in scene; run tools/make_assets.sh";

@@ -249,15 +249,12 @@ TEST_F(CavityRoom, HollowBoxDarkLitPointsAgreeWithTheReference) {
         expect_agrees("cavity", points[k], read(*scene_, h, points[k]).x, (*ref_)[k], 0.05);
 }
 
+// Under the slab (the floor runs on under it: cut along its footprint, split_intersections),
+// and the sunk box's faces below the floor (each a polygon of its own): dark. Were 1.2 % of the
+// lit floor 5 cm inside the slab's edge, 0.34 % mid-slab (leaves straddling the contact line)
+// and 1.3 % on the buried x- face (seen through rasterisation cracks at the meeting line, and
+// linked whole through a coplanar neighbour's pixel: gpu::fill_cracks, visible_in_depth_map).
 TEST_F(CavityRoom, UnderTheSlabAndTheSunkBoxFacesBelowTheFloorAreDark) {
-    // BUG (engine): light reaches closed cavities. Measured (default options, hybrid, 1e-3):
-    // floor under the slab at (0.35, 0, 0.5), 5 cm inside its edge: 1.2 % of the lit floor
-    // (0.0054, a third of it, with --ff hemicube); at (0.4, 0, 1.0), mid-slab: 0.34 %; the
-    // sunk box's x- face below the floor (1.3, -0.12, 0.5), a separate polygon after
-    // split_intersections: 1.3 % (hemicube: under 1e-3). Smallest case: make_light_room(0.5,
-    // 2) with the slab alone: 0.30 % at (0.35, 0, 0.5), 0.12 % at (0.4, 0, 1.0) of the floor
-    // centre's irradiance (hemicube 0.81 %, 0.15 %). Remove the skip when fixed.
-    GTEST_SKIP() << "engine bug: light leaks under the slab and onto buried faces (~1 %)";
     ASSERT_TRUE(ensure_context());
     expect_dark({
         {"floor under the slab", {0.4, 0, 1.0}, {0, 1, 0}},

@@ -305,14 +305,33 @@ TEST(SplitIntersections, PlusShapeCutsBothAlongTheMeetingLineAreasKept) {
     }
 }
 
-TEST(SplitIntersections, BoxStandingOnAFloorIsNotCut) {
+// A box standing on a floor: its four sides touch the floor's front along their bottom edges,
+// and the floor is cut along those lines (3 x 3 pieces, the middle one exactly the box's
+// footprint, which no shooter outside the box sees); the box itself is not cut (the floor
+// meets its sides only on their edges). The same box under the floor (touching its back), or
+// standing on one corner edge outside the floor, cuts nothing.
+TEST(SplitIntersections, BoxStandingOnAFloorCutsTheFloorAlongItsFootprint) {
     Builder b;
     b.floor(-2, 2, -2, 2, 0, "floor");
-    b.box({-0.5, 0, -0.5}, {0.5, 1, 0.5}, "box"); // bottom face touches the floor's plane
+    b.box({-0.5, 0, -0.5}, {0.5, 1, 0.5}, "box"); // bottom face in the floor's plane
+    Scene s = b.scene;
+    const SplitStats st = split_intersections(s);
+    EXPECT_EQ(st.polygons_cut, 1u);
+    EXPECT_EQ(count_in(s, "floor"), 9u);
+    EXPECT_EQ(count_in(s, "box"), 6u);
+    EXPECT_NEAR(area_of(s, "floor"), 16.0, 1e-12);
+    const auto under = find_surface(s, {0.2, 0, 0.1}, {0, 1, 0}, 1e-9);
+    ASSERT_TRUE(under.has_value());
+    EXPECT_NEAR(s.polygons[under->polygon].area, 1.0, 1e-12) << "the footprint";
+}
+
+TEST(SplitIntersections, BoxTouchingAFloorFromBehindIsNotCut) {
+    Builder b;
+    b.floor(-2, 2, -2, 2, 0, "floor");
+    b.box({-0.5, -1, -0.5}, {0.5, 0, 0.5}, "box"); // hangs under the floor, top in its plane
     Scene s = b.scene;
     const SplitStats st = split_intersections(s);
     EXPECT_EQ(st.polygons_cut, 0u);
-    EXPECT_EQ(s.polygons.size(), 7u);
     EXPECT_EQ(s.content_hash(), b.scene.content_hash()) << "nothing changed";
 }
 

@@ -137,8 +137,11 @@ HEMIRAD_API std::size_t make_two_sided(Scene& scene,
 /// floor, a jar sunk into a shelf, a floor running on into a wall slab), along the line where
 /// they meet, so that the part on each side is a polygon of its own (split_intersections.cpp:
 /// otherwise leaf patches straddle the two sides and carry light into closed cavities).
-/// Polygons that only touch (a box standing on a floor) are left whole: a shooter's
-/// visibility test keeps light off the part under the box. A meeting line
+/// A polygon that another only touches from its front with an edge (a box standing on a floor,
+/// a wall under a ceiling that runs on over the next room) is cut along that edge's line too:
+/// the part under the box is then a polygon no shooter sees, where as one polygon its leaves
+/// straddle the contact line and the visibility test at their centres lets light under it.
+/// Touching from behind, or only at a corner, cuts nothing. A meeting line
 /// shorter than a tenth of the polygon's longest edge is not cut; at most 16 lines a polygon
 /// (the longest); pieces keep the polygon's material, group and texture coordinates. For a
 /// scene without twins (before make_two_sided). Deterministic.

@@ -70,6 +70,7 @@ class HemicubeProvider final : public FormFactorProvider {
         for (const Polygon& poly : scene.polygons)
             centre_.push_back(patch_geometry(poly, 0, 0).centre);
         area_.assign(total, -1.f);
+        plane_eps_ = 1e-7 * scene.bounds().diagonal();
     }
 
     std::string name() const override { return name_; }
@@ -295,6 +296,7 @@ class HemicubeProvider final : public FormFactorProvider {
             t_read += since(t0);
             t0 = Clock::now();
             const gpu::HemicubeFrame frame = gpu::hemicube_frame(sides[k]);
+            cracks_ += gpu::fill_cracks(*scene_, layout, frame, buffers[k]->data(), s.centre);
             const double d2 = 4.0 / (double(layout.res) * layout.res); // pixel area at 1
             const std::vector<float>& px = *buffers[k];
             for (int f = 0; f < 5; ++f) {
@@ -406,7 +408,20 @@ class HemicubeProvider final : public FormFactorProvider {
             if (!(cos_theta > 0)) return 0;
             return point_->intensity(w) * cos_theta / r2;
         }
+        // A patch emits from its front only: a point behind it (or in its plane) gets nothing
+        // (the kernel below would integrate over the shooter's back).
+        if (glm::dot(centre - s.geometry.centre, s.normal) <= plane_eps_) return 0;
         return point_to_polygon_ff(centre, n, s.geometry.corners.data(), s.geometry.count);
+    }
+
+    // Does polygon p reach in front of a patch shooter's plane? One wholly behind it, or in it
+    // (a neighbour in the same plane), gets nothing from it, whatever pixels at the horizon
+    // show: float rounding rasterises an edge-on polygon there.
+    bool in_front_of(const Shooter& s, std::uint32_t p) const {
+        const Polygon& q = scene_->polygons[p];
+        for (int k = 0; k < q.count; ++k)
+            if (glm::dot(q.v[k] - s.geometry.centre, s.normal) > plane_eps_) return true;
+        return false;
     }
 
     std::uint64_t node_id(std::uint32_t p, std::uint32_t level, std::uint32_t index) const {
@@ -442,6 +457,9 @@ class HemicubeProvider final : public FormFactorProvider {
     void reduce(const Shooter& shooter, const gpu::HemicubeLayout& layout,
                 std::vector<Link>& links) {
         touched_.clear();
+        const gpu::HemicubeFrame frame = gpu::hemicube_frame(shooter);
+        cracks_ +=
+            gpu::fill_cracks(*scene_, layout, frame, pixels_.data(), shooter.geometry.centre);
         double backface = 0;
         const std::size_t n = std::size_t(layout.width) * layout.height;
         for (std::size_t i = 0; i < n; ++i) {
@@ -453,8 +471,8 @@ class HemicubeProvider final : public FormFactorProvider {
             scan_pixel(pixels_.data(), i, layout.delta_ff[i]);
         }
         backface_ = backface;
-        const gpu::HemicubeVisibility vis(*scene_, layout, gpu::hemicube_frame(shooter),
-                                          pixels_.data(), shooter.geometry.centre);
+        const gpu::HemicubeVisibility vis(*scene_, layout, frame, pixels_.data(),
+                                          shooter.geometry.centre);
         vis_[0] = vis_[1] = &vis;
         sphere_axis_ = dvec3(0.0);
         if (mode_ == Mode::Hybrid) mark_partial(vis, pixels_.data());
@@ -559,6 +577,7 @@ class HemicubeProvider final : public FormFactorProvider {
         }
         links.reserve(touched_.size());
         for (const PatchAddress& a : touched_) {
+            if (!point_ && !in_front_of(shooter, a.polygon)) continue;
             const std::uint64_t id = node_id(a.polygon, a.level, a.index);
             if (below_seen_[id] == stamp_) {
                 // The oracle picks a level per fragment, so where GL's LOD crosses a level a
@@ -708,6 +727,8 @@ class HemicubeProvider final : public FormFactorProvider {
     std::uint32_t stamp_ = 0;
     double max_power_ = 0;
     double backface_ = 0;
+    double plane_eps_ = 0;   ///< in a plane: within this distance of it [scene units]
+    std::size_t cracks_ = 0; ///< pixels filled by gpu::fill_cracks, all shots
     const gpu::HemicubeLayout* last_layout_ = nullptr; ///< of the last shoot() (in layouts_)
     Shooter last_shooter_;
     int last_width_ = 0, last_height_ = 0; ///< layout of pixels_ (last_hemicube())

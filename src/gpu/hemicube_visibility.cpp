@@ -25,7 +25,75 @@ double plane_hit(const Polygon& q, const dvec3& from, const dvec3& u) {
     return glm::dot(q.v[0] - from, q.normal) / denom;
 }
 
+// Is p (in q's plane) inside q or within `tol` of it?
+bool within(const Polygon& q, const dvec3& p, double tol) {
+    for (int k = 0; k < q.count; ++k) {
+        const dvec3& a = q.v[k];
+        const dvec3 e = q.v[(k + 1) % q.count] - a;
+        if (glm::dot(glm::cross(e, p - a), q.normal) < -tol * glm::length(e)) return false;
+    }
+    return true;
+}
+
+long shown_polygon(const float* rgba, std::size_t at) {
+    const float id = rgba[4 * at + 2];
+    if (id > -0.5f && id < 0.5f) return -1;
+    return long(std::lround(std::abs(id))) - 1;
+}
+
 } // namespace
+
+std::size_t fill_cracks(const Scene& scene, const HemicubeLayout& L, const HemicubeFrame& frame,
+                        float* rgba, const dvec3& eye) {
+    std::size_t filled = 0;
+    const double pixel = 2.0 / L.res; // pixel side at unit distance along the face axis
+    for (int f = 0; f < 5; ++f) {
+        const HemicubeLayout::Face& face = L.faces[f];
+        const dvec3 screen_x = glm::cross(frame.dir[f], frame.up[f]);
+        const auto at = [&](int i, int j) {
+            return std::size_t(face.y + j) * std::size_t(L.width) + std::size_t(face.x + i);
+        };
+        // Pixel a = (i, j) shows P, its neighbour b shows Q: if the ray to the point a shows,
+        // nudged a hundredth of a pixel into P, crosses Q (a ray that meets P on an edge
+        // shared with nearer polygons, a face meeting the floor from below hit on the meeting
+        // line, shows what lies just beside it), a takes b's value.
+        const auto fill = [&](std::size_t a, int i, int j, std::size_t b) {
+            const long p = shown_polygon(rgba, a), q = shown_polygon(rgba, b);
+            if (p < 0 || q < 0 || p == q) return;
+            const double sx = -1 + (i + 0.5) * pixel;
+            const double sy = f == 0 ? -1 + (j + 0.5) * pixel : (j + 0.5) * pixel;
+            const dvec3 u = frame.dir[f] + sx * screen_x + sy * frame.up[f];
+            const Polygon& P = scene.polygons[std::size_t(p)];
+            const double tp = plane_hit(P, eye, u);
+            if (!(tp > 0)) return;
+            const double tol = 0.01 * pixel * tp * glm::length(u);
+            dvec3 x = eye + tp * u, inward(0.0);
+            for (int c = 0; c < P.count; ++c) inward += P.v[c];
+            inward = inward / double(P.count) - x;
+            const double l = glm::length(inward);
+            if (l > tol) x += inward * (tol / l);
+            const dvec3 d = x - eye;
+            const Polygon& Q = scene.polygons[std::size_t(q)];
+            const double tq = plane_hit(Q, eye, d);
+            if (!(tq > 0 && tq < 1 - 1e-6) || !within(Q, eye + tq * d, tol)) return;
+            for (int c = 0; c < 4; ++c) rgba[4 * a + c] = rgba[4 * b + c];
+            ++filled;
+        };
+        for (int j = 0; j < face.h; ++j)
+            for (int i = 0; i < face.w; ++i) {
+                const std::size_t a = at(i, j);
+                if (i + 1 < face.w) {
+                    const std::size_t b = at(i + 1, j);
+                    if (rgba[4 * a + 2] != rgba[4 * b + 2]) fill(a, i, j, b), fill(b, i + 1, j, a);
+                }
+                if (j + 1 < face.h) {
+                    const std::size_t b = at(i, j + 1);
+                    if (rgba[4 * a + 2] != rgba[4 * b + 2]) fill(a, i, j, b), fill(b, i, j + 1, a);
+                }
+            }
+    }
+    return filled;
+}
 
 bool segment_crosses(const Polygon& q, const dvec3& from, const dvec3& d) {
     const double t = plane_hit(q, from, d);
@@ -81,7 +149,25 @@ bool HemicubeVisibility::visible_in_depth_map(const dvec3& x, std::uint32_t own)
     const long q = shown(std::size_t(pixel));
     if (q < 0 || std::uint32_t(q) == own) return true;
     const double t = plane_hit(scene_->polygons[std::size_t(q)], eye_, d);
-    return !(t < 1 - 1e-6);
+    if (t < 1 - 1e-6) return false;
+    // What the pixel shows may lie in x's plane (a neighbour of x's polygon, the two beyond
+    // a nearer floor): x is also hidden by what the pixels around it show, if the segment to x
+    // crosses it.
+    const long w = long(layout_->width);
+    const long px = pixel % w, py = pixel / w;
+    for (const HemicubeLayout::Face& f : layout_->faces) {
+        if (px < f.x || px >= f.x + f.w || py < f.y || py >= f.y + f.h) continue;
+        for (long y = std::max(py - 1, long(f.y)); y <= std::min(py + 1, long(f.y + f.h - 1)); ++y)
+            for (long x_ = std::max(px - 1, long(f.x)); x_ <= std::min(px + 1, long(f.x + f.w - 1));
+                 ++x_) {
+                const long r = shown(std::size_t(y * w + x_));
+                if (r >= 0 && std::uint32_t(r) != own &&
+                    segment_crosses(scene_->polygons[std::size_t(r)], eye_, d))
+                    return false;
+            }
+        break;
+    }
+    return true;
 }
 
 } // namespace hemirad::gpu

@@ -15,6 +15,16 @@ namespace hemirad::gpu {
 /// polygon q (convex, its edges excluded by a relative margin)?
 bool segment_crosses(const Polygon& q, const dvec3& from, const dvec3& d);
 
+/// Pixels that show a polygon through a crack: rasterisation leaves gaps along T-junctions (a
+/// corner of one polygon on the edge of another, as split_intersections makes them), where a
+/// pixel's centre ray passes within rounding of the edge between two nearer polygons and shows
+/// what lies behind them (a face below the floor, a room behind a wall). Such a pixel (its ray
+/// meets the polygon a 4-neighbour shows, within a hundredth of a pixel of its edges, in front
+/// of what it shows) takes that neighbour's value. A true silhouette is left alone: there the
+/// ray passes beside the nearer polygon by a share of a pixel. Returns the pixels changed.
+std::size_t fill_cracks(const Scene& scene, const HemicubeLayout& layout,
+                        const HemicubeFrame& frame, float* rgba, const dvec3& eye);
+
 class HemicubeVisibility {
   public:
     /// The hemicube `rgba` (IDs as in FormFactorProvider::HemicubeImage) rendered with
@@ -32,7 +42,9 @@ class HemicubeVisibility {
     /// The same as a depth map would tell it, for a point whose polygon covers no pixel (it
     /// is smaller than one): x is hidden if the plane of what its pixel shows lies in front of
     /// it along its ray (the shown surface is taken to fill the pixel: a sub-pixel polygon
-    /// behind a thin occluder is not seen through it).
+    /// behind a thin occluder is not seen through it); and it is hidden if the segment to x
+    /// crosses a polygon shown in the 3 x 3 pixels around (what the pixel shows may lie in x's
+    /// plane, beside the floor that hides x).
     bool visible_in_depth_map(const dvec3& x, std::uint32_t own) const;
 
     /// Calls mark(i) for every pixel i that shows the front of a polygon P next to a pixel

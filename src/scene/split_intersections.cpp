@@ -43,19 +43,23 @@ double longest_edge(const Polygon& p) {
     return l;
 }
 
-// Where polygon q passes through the plane of polygon p, as a segment in p's interior
-// (strictly inside, by `eps`): q must have corners strictly on both sides of the plane.
-// Returns false if they do not meet, or only on p's boundary or outside p.
+// Where polygon q passes through the plane of polygon p, or stands on p's front with an edge
+// in p's plane (a box on a floor, a wall under a ceiling that runs on over it), as a segment in
+// p's interior (strictly inside, by `eps`). Returns false if they do not meet, or only on p's
+// boundary or outside p.
 bool meeting(const Polygon& p, const Polygon& q, double eps, Cut& cut) {
     if (std::abs(glm::dot(p.normal, q.normal)) > 1 - 1e-9) return false; // parallel planes
     double d[4];
     bool above = false, below = false;
+    int on = 0;
     for (int k = 0; k < q.count; ++k) {
         d[k] = glm::dot(q.v[k] - p.v[0], p.normal);
         above |= d[k] > eps;
         below |= d[k] < -eps;
+        on += std::abs(d[k]) <= eps ? 1 : 0;
     }
-    if (!(above && below)) return false; // q does not pass through p's plane
+    const bool through = above && below, standing = above && !below && on >= 2;
+    if (!through && !standing) return false; // q does not reach p's plane from its front
     // The points of q in p's plane: corners on it, edges across it.
     const dvec3 dir = glm::normalize(glm::cross(p.normal, q.normal));
     double s0 = 1e300, s1 = -1e300;
