@@ -26,14 +26,29 @@ double cosd(double deg) {
     return std::cos(deg * kPi / 180);
 }
 
-// The message of the InputError that parsing `text` as "bad.ies" throws ("" if none).
-std::string parse_error(const std::string& text) {
+// The message of the InputError that `parse` of `text` as file `name` throws ("" if none).
+template <class Parse>
+std::string error_of(Parse parse, const std::string& text, const char* name) {
     try {
-        parse_ies(text, "bad.ies");
+        parse(text, name);
     } catch (const InputError& e) {
         return e.what();
     }
     return "";
+}
+
+std::string parse_error(const std::string& text) {
+    return error_of(parse_ies, text, "bad.ies");
+}
+
+// Reading a file that is not there is an InputError naming it.
+template <class Read> void expect_missing_file_error(Read read, const std::string& name) {
+    try {
+        read(kDir + name);
+        ADD_FAILURE() << "a missing file was read: " << name;
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
 }
 
 // A valid LM-63-2002 file with the given lines after the format line and keywords.
@@ -281,12 +296,7 @@ TEST(Ies, ErrorsNameFileLineAndValue) {
               std::string::npos);
     EXPECT_NE(parse_error("IES:LM-63-2019\nTILT=NONE\n").find("bad.ies:2: the file ends where"),
               std::string::npos);
-    try {
-        read_ies(kDir + "missing.ies");
-        FAIL() << "a missing file was read";
-    } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("missing.ies"), std::string::npos);
-    }
+    expect_missing_file_error(read_ies, "missing.ies");
 }
 
 TEST(Photometry, SpotDistribution) {
@@ -371,12 +381,7 @@ std::string ldt(int isym, int mc, const std::vector<double>& gamma,
 }
 
 std::string ldt_error(const std::string& text) {
-    try {
-        parse_eulumdat(text, "bad.ldt");
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
+    return error_of(parse_eulumdat, text, "bad.ldt");
 }
 
 // A quadrant-symmetric distribution, cd/klm: f(gamma, C) = 100 cos(gamma/2) (1 + 0.4 cos 2C).
@@ -523,12 +528,7 @@ TEST(Eulumdat, ErrorsNameFileLineAndValue) {
         EXPECT_NE(e.find(c.expected), std::string::npos)
             << "expected " << c.expected << " in: " << e;
     }
-    try {
-        read_eulumdat(kDir + "missing.ldt");
-        FAIL() << "a missing file was read";
-    } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("missing.ldt"), std::string::npos);
-    }
+    expect_missing_file_error(read_eulumdat, "missing.ldt");
 }
 
 // Told apart by content, whatever the name: read_photometric_file of a EULUMDAT text and of an

@@ -170,17 +170,17 @@ struct HEMIRAD_API PhotometricFile {
     std::vector<std::string> warnings;
 };
 /// Whether `text` is a EULUMDAT file rather than an IES file, by content: an IES file starts
-/// with "IES" or has a TILT= line; anything else is read as EULUMDAT.
+/// with "IESNA" or "IES:" or has a TILT= line; anything else is read as EULUMDAT.
 HEMIRAD_API bool is_eulumdat_text(const std::string& text);
 /// Reads an IES or EULUMDAT file, told apart by content (is_eulumdat_text). Throws InputError.
 HEMIRAD_API PhotometricFile read_photometric_file(const std::string& path);
 
 /// A point-source luminaire placed in a scene (SCENE.json "luminaires", scene_json.h).
 struct HEMIRAD_API Luminaire {
-    std::string name;               ///< for reports ("L1", or the "name" given)
-    std::string kind;               ///< "ies", "ldt", "candela" or "spot"
-    std::string file;               ///< the photometric file as given (ies, ldt), else ""
-    glm::dvec3 position{0.0};       ///< [scene units; metres for lux]
+    std::string name;         ///< for reports ("L1", or the "name" given)
+    std::string kind;         ///< "ies", "ldt", "candela", "spot" or "point" (a glTF point light)
+    std::string file;         ///< the photometric file as given (ies, ldt), else ""
+    glm::dvec3 position{0.0}; ///< [scene units; metres for lux]
     glm::dvec3 aim{0.0, -1.0, 0.0}; ///< the photometric nadir (gamma = 0), unit (orient())
     double rotation = 0;   ///< turns the C planes about the aim, counterclockwise from above [deg]
     double multiplier = 1; ///< scales the intensity (and lumens), > 0

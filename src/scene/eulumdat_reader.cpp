@@ -44,6 +44,7 @@ using photometric::trim;
 /// Most lamp sets read (the format's own limit is 20; some writers add more).
 constexpr int kMaxLampSets = 1000;
 
+/// The header of a EULUMDAT file, lines 1-26f: one field a line, read in order.
 class Lines {
   public:
     Lines(const std::vector<std::string>& lines, const std::string& path)
@@ -199,24 +200,16 @@ EulumdatFile parse_eulumdat(const std::string& text, const std::string& path) {
                                          : mc / 2 + 1;
     const int ng = f.gammas;
     const double scale = f.conversion_factor * f.rated_lumens() / 1000.0;
-    std::vector<double> table(std::size_t(stored) * std::size_t(ng));
-    for (int p = 0; p < stored; ++p) {
-        const int index = f.symmetry == 3 ? (3 * mc / 4 + p) % mc : p;
-        for (int g = 0; g < ng; ++g) {
-            const double x = r.number("intensity " + std::to_string(g + 1) + " of C plane " +
-                                          format_number(C[std::size_t(index)]) + " (cd/klm)",
-                                      line);
-            if (x < 0) fail(path, line, "intensity", r.last_text(), "must be >= 0");
-            table[std::size_t(p) * std::size_t(ng) + std::size_t(g)] = x * scale;
-        }
-    }
-    if (!r.done())
-        throw InputError(path, r.peek().line,
-                         "'" + r.peek().text + "' after the last of the " +
-                             std::to_string(stored * ng) + " intensities (" +
-                             std::to_string(stored) + " C planes for Isym " +
-                             std::to_string(f.symmetry) + " x " + std::to_string(ng) +
-                             " gamma angles): the counts do not match the table");
+    const std::vector<double> table =
+        photometric::read_table(r, path, stored, ng, scale, "intensity", [&](int p, int g) {
+            const int index = f.symmetry == 3 ? (3 * mc / 4 + p) % mc : p;
+            return "intensity " + std::to_string(g + 1) + " of C plane " +
+                   format_number(C[std::size_t(index)]) + " (cd/klm)";
+        });
+    photometric::expect_end(r, path, std::to_string(stored * ng) + " intensities",
+                            std::to_string(stored) + " C planes for Isym " +
+                                std::to_string(f.symmetry) + " x " + std::to_string(ng) +
+                                " gamma angles");
 
     CandelaDistribution& d = f.distribution;
     d.gamma = gamma;

@@ -197,9 +197,6 @@ IesFile parse_ies(const std::string& text, const std::string& path) {
              "only types C (1) and B (2) are supported");
     }
     const bool type_b = f.photometric_type == 2;
-    if (std::size_t(nv) * std::size_t(nh) > 50000000)
-        fail(path, line, "table size", std::to_string(nv) + " x " + std::to_string(nh),
-             "more than 50 million candela values");
     f.units = r.integer("units type", line);
     if (f.units != 1 && f.units != 2)
         fail(path, line, "units type", r.last_text(), "must be 1 (feet) or 2 (metres)");
@@ -287,22 +284,14 @@ IesFile parse_ies(const std::string& text, const std::string& path) {
     }
 
     const double scale = f.candela_multiplier * f.ballast_factor * f.ballast_lamp_factor;
-    std::vector<double> candela(std::size_t(nv) * std::size_t(nh));
-    for (int h = 0; h < nh; ++h)
-        for (int v = 0; v < nv; ++v) {
-            const double x = r.number("candela value " + std::to_string(v + 1) + " of plane " +
-                                          std::to_string(h + 1) + " (" +
-                                          (type_b ? "H = " : "C = ") + h_text[std::size_t(h)] + ")",
-                                      line);
-            if (x < 0) fail(path, line, "candela value", r.last_text(), "must be >= 0");
-            candela[std::size_t(h) * std::size_t(nv) + std::size_t(v)] = x * scale;
-        }
-    if (!r.done())
-        throw InputError(path, r.peek().line,
-                         "'" + r.peek().text + "' after the last of the " +
-                             std::to_string(nv * nh) + " candela values (" + std::to_string(nv) +
-                             " vertical x " + std::to_string(nh) +
-                             " horizontal angles): the counts do not match the table");
+    std::vector<double> candela =
+        photometric::read_table(r, path, nh, nv, scale, "candela value", [&](int h, int v) {
+            return "candela value " + std::to_string(v + 1) + " of plane " + std::to_string(h + 1) +
+                   " (" + (type_b ? "H = " : "C = ") + h_text[std::size_t(h)] + ")";
+        });
+    photometric::expect_end(r, path, std::to_string(nv * nh) + " candela values",
+                            std::to_string(nv) + " vertical x " + std::to_string(nh) +
+                                " horizontal angles");
     if (type_b) {
         d = type_b_to_c(TypeB{va, ha, std::move(candela)});
         f.warnings.push_back(

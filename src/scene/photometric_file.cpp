@@ -9,8 +9,8 @@ bool is_eulumdat_text(const std::string& text) {
     // keywords or free text up to a TILT= line; a EULUMDAT file has neither (its line 1 is a
     // company name, then numbers one a line).
     const std::vector<std::string> lines = photometric::split_lines(text);
-    if (!lines.empty() && photometric::upper(photometric::trim(lines[0])).rfind("IES", 0) == 0)
-        return false;
+    const std::string first = lines.empty() ? "" : photometric::upper(photometric::trim(lines[0]));
+    if (first.rfind("IESNA", 0) == 0 || first.rfind("IES:", 0) == 0) return false;
     for (const std::string& l : lines) {
         const std::string t = photometric::upper(photometric::trim(l));
         if (t.rfind("TILT", 0) == 0 && t.find('=') != std::string::npos) return false;

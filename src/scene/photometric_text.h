@@ -3,6 +3,7 @@
 // with its line for messages.
 #pragma once
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -143,6 +144,7 @@ class Reader {
     }
     const std::string& last_text() const { return tokens_[next_ - 1].text; }
     bool done() const { return next_ >= tokens_.size(); }
+    std::size_t remaining() const { return tokens_.size() - next_; }
     const Token& peek() const { return tokens_[next_]; }
 
   private:
@@ -152,5 +154,34 @@ class Reader {
     int last_line_;
     bool decimal_comma_;
 };
+
+/// Reads a table of rows x cols values >= 0, row-major, each times `scale`; `label(row, col)`
+/// names a value in messages ("candela value 3 of plane 2 (C = 90)"), `what` ("candela value")
+/// a negative one.
+template <class Label>
+std::vector<double> read_table(Reader& r, const std::string& path, int rows, int cols, double scale,
+                               const char* what, const Label& label) {
+    std::vector<double> out;
+    // Memory bounded by the file: a table larger than what is left ends in an error anyway.
+    out.reserve(std::min(std::size_t(rows) * std::size_t(cols), r.remaining()));
+    int line = 0;
+    for (int i = 0; i < rows; ++i)
+        for (int j = 0; j < cols; ++j) {
+            const double x = r.number(label(i, j), line);
+            if (x < 0) fail(path, line, what, r.last_text(), "must be >= 0");
+            out.push_back(x * scale);
+        }
+    return out;
+}
+
+/// InputError at the first value after the table, if any: "'x' after the last of the N
+/// `values` (`shape`): the counts do not match the table".
+inline void expect_end(const Reader& r, const std::string& path, const std::string& values,
+                       const std::string& shape) {
+    if (!r.done())
+        throw InputError(path, r.peek().line,
+                         "'" + r.peek().text + "' after the last of the " + values + " (" + shape +
+                             "): the counts do not match the table");
+}
 
 } // namespace hemirad::photometric
