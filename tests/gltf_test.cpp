@@ -5,8 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <numbers>
 #include <string>
 
+#include "gltf_lights_scene.h"
 #include "hemirad/error.h"
 #include "hemirad/scene_io.h"
 
@@ -129,8 +132,8 @@ TEST(Gltf, UnsupportedModesAndMissingImagesAreWarnings) {
     EXPECT_EQ(lines.polygons.size(), 4u) << "the lines primitive skipped (in both instances)";
     EXPECT_TRUE(has_warning(lines, "mesh 0 primitive 0: mode 1"));
     EXPECT_FALSE(has_warning(lines, "extensions not read")) << "emissive strength is read";
-    EXPECT_TRUE(has_warning(load_gltf(data("lights.gltf")),
-                            "lights.gltf: extensions not read: KHR_lights_punctual"));
+    EXPECT_FALSE(has_warning(load_gltf(data("lights.gltf")), "extensions not read"))
+        << "KHR_lights_punctual is read (this file lists it and holds no light)";
     const Scene img = load_gltf(data("missing_image.gltf"));
     ASSERT_EQ(img.polygons.size(), 2u);
     EXPECT_EQ(img.materials.at(0).texture, -1);
@@ -153,4 +156,81 @@ TEST(Gltf, AssetRoomLoadsWithTextureCameraAndLight) {
     expect_near(b.hi - b.lo, {5, 3, 4}, "room size");
     EXPECT_GE(s.find_group("block_a"), 0);
     EXPECT_GE(s.find_group("floor"), 0);
+}
+
+// KHR_lights_punctual: point and spot lights become luminaires at their nodes' world
+// positions (the parent's transform composed), a spot aimed down its node's -z with the
+// extension's cone; names from the light, else the node, else light<k>; colour scales by its
+// luminance with a warning; directional lights are warned and skipped.
+TEST(Gltf, PunctualLightsBecomeLuminaires) {
+    const double rig[3] = {1, 0, -2};
+    const std::string half_turn_x = "\"rotation\": [1, 0, 0, 0]"; // 180 degrees about x
+    const std::string file = test::write_gltf_lights(
+        std::filesystem::path(testing::TempDir()) / "gltf_lights", "lights", 2, rig,
+        {{"{\"type\": \"point\", \"intensity\": 300, \"name\": \"bulb\"}",
+          "\"name\": \"n0\", \"translation\": [-1, 2.5, 2]"},
+         {"{\"type\": \"point\", \"intensity\": 100, \"color\": [1, 0.5, 0.25]}",
+          "\"name\": \"n1\", \"translation\": [0, 1, 0]"},
+         {"{\"type\": \"spot\", \"intensity\": 1000, \"spot\": {\"innerConeAngle\": 0.2, "
+          "\"outerConeAngle\": 0.4}}",
+          "\"translation\": [0, 3, 0], \"rotation\": [-0.7071067811865476, 0, 0, "
+          "0.7071067811865476]"},
+         {"{\"type\": \"directional\", \"intensity\": 5, \"name\": \"sun\"}", half_turn_x}});
+    const Scene s = load_gltf(file);
+    ASSERT_EQ(s.luminaires.size(), 3u);
+    const Luminaire& bulb = s.luminaires[0];
+    EXPECT_EQ(bulb.name, "bulb");
+    EXPECT_EQ(bulb.kind, "point");
+    expect_near(bulb.position, {0, 2.5, 0}, "bulb: rig (1, 0, -2) + node (-1, 2.5, 2)");
+    EXPECT_NEAR(bulb.intensity({0.6, -0.8, 0}), 300, 1e-12);
+    EXPECT_NEAR(bulb.lumens(), 4 * std::numbers::pi * 300, 1e-9);
+    EXPECT_EQ(s.luminaires[1].name, "n1");
+    EXPECT_NEAR(s.luminaires[1].intensity({0, 1, 0}), 100 * (0.2126 + 0.7152 * 0.5 + 0.0722 * 0.25),
+                1e-9);
+    EXPECT_TRUE(has_warning(s, "light 1 ('n1'): color (1, 0.5, 0.25) is not modelled"));
+    const Luminaire& spot = s.luminaires[2];
+    EXPECT_EQ(spot.name, "light2");
+    EXPECT_EQ(spot.kind, "spot");
+    expect_near(spot.position, {1, 3, -2}, "spot");
+    // -90 degrees about x turns -z into -y: straight down.
+    expect_near(spot.aim, {0, -1, 0}, "spot aim");
+    const double deg = 180 / std::numbers::pi;
+    const auto towards = [](double gamma_deg) {
+        const double g = gamma_deg / (180 / std::numbers::pi);
+        return dvec3(std::sin(g), -std::cos(g), 0);
+    };
+    EXPECT_NEAR(spot.intensity(towards(0.1 * deg)), 1000, 1e-9); // inside the inner cone
+    EXPECT_NEAR(spot.intensity(towards(0.2 * deg)), 1000, 1e-3); // its edge (acos rounding)
+    EXPECT_EQ(spot.intensity(towards(0.41 * deg)), 0.0);         // beyond the outer
+    // Between: (t)^2 with t linear in cos(gamma), within the tabulation's 0.05 %.
+    const double t = (std::cos(0.3) - std::cos(0.4)) / (std::cos(0.2) - std::cos(0.4));
+    EXPECT_NEAR(spot.intensity(towards(0.3 * deg)), 1000 * t * t, 0.5);
+    EXPECT_TRUE(has_warning(s, "directional light sun: not supported yet (ignored)"));
+    EXPECT_FALSE(has_warning(s, "extensions not read"));
+}
+
+TEST(Gltf, BadLightsAreErrorsNamingTheElement) {
+    const double rig[3] = {0, 0, 0};
+    const auto error_with = [&](const std::string& light, const std::string& name) {
+        const std::string file =
+            test::write_gltf_lights(std::filesystem::path(testing::TempDir()) / "gltf_bad_lights",
+                                    name, 1, rig, {{light, "\"translation\": [0, 1, 0]"}});
+        try {
+            load_gltf(file);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    EXPECT_NE(error_with("{\"type\": \"point\", \"intensity\": -1}", "negative")
+                  .find("negative.gltf: light 0 ('light0'): intensity -1 must be >= 0"),
+              std::string::npos);
+    EXPECT_NE(error_with("{\"type\": \"spot\", \"spot\": {\"innerConeAngle\": 0.5, "
+                         "\"outerConeAngle\": 0.4}}",
+                         "cone")
+                  .find("cone.gltf: light 0 ('light0'): innerConeAngle 0.5 and outerConeAngle "
+                        "0.4 must satisfy"),
+              std::string::npos);
+    EXPECT_NE(error_with("{\"type\": \"area\"}", "area").find("unknown type 'area'"),
+              std::string::npos);
 }

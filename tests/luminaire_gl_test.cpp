@@ -15,15 +15,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <numbers>
 
+#include "gltf_lights_scene.h"
 #include "hemirad/gather.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/grid.h"
 #include "hemirad/provider.h"
 #include "hemirad/readout.h"
 #include "hemirad/reference.h"
+#include "hemirad/scene_io.h"
 #include "hemirad/solver.h"
 #include "hemirad/validation_scenes.h"
 
@@ -363,4 +366,38 @@ TEST(Luminaire, ReferenceAgreesWithTheGather) {
                     100 * (ours / want - 1));
         EXPECT_NEAR(ours, want, 0.03 * want + 4 * sem) << "probe " << i;
     }
+}
+
+// A glTF point light (KHR_lights_punctual) of I = 400 cd at h = 1.6 m over a black 4 x 4 m
+// plane, its node under a translated parent: one shot, the luminaire's, and the final gather's
+// irradiance at the foot point is I / h^2 lux. The gather adds a luminaire's direct light in
+// closed form (one shadow ray) and the black plane reflects nothing, so the only error is
+// rounding: 1e-9. The solver's own leaf there (interpolated) within 1 %.
+TEST(Luminaire, GltfPointLightOverAPlane) {
+    ASSERT_TRUE(ensure_context());
+    const double I = 400, h = 1.6;
+    const double rig[3] = {0.5, 0.25, -1};
+    const std::string file = test::write_gltf_lights(
+        std::filesystem::path(testing::TempDir()) / "gltf_point_light", "point", 2, rig,
+        {{"{\"type\": \"point\", \"intensity\": " + num(I) + "}",
+          "\"name\": \"bulb\", \"translation\": [-0.5, " + num(h - 0.25) + ", 1]"}});
+    const Scene scene = load_gltf(file);
+    ASSERT_EQ(scene.luminaires.size(), 1u);
+    EXPECT_LT(glm::length(scene.luminaires[0].position - dvec3(0, h, 0)), 1e-12);
+    Solver s(scene, gpu_options());
+    while (s.step()) {}
+    ASSERT_TRUE(s.converged());
+    EXPECT_EQ(s.shots(), 1);
+    const Hierarchy& hier = s.solution();
+    const FinalGather gather(hier);
+    const GridResult g = evaluate_grid(hier, {"floor", 9, 9}, &gather);
+    ASSERT_EQ(g.evaluated, 81);
+    const GridPoint& foot = g.points[40]; // the centre of the 9 x 9 grid
+    EXPECT_LT(glm::length(foot.position - dvec3(0, 0, 0)), 1e-9);
+    EXPECT_NEAR(kLumensPerWatt * foot.E.y, I / (h * h), 1e-9 * I / (h * h));
+    const double leaf =
+        kLumensPerWatt * irradiance_at(hier, *find_surface(scene, foot.position, dvec3(0, 1, 0))).y;
+    EXPECT_NEAR(leaf, I / (h * h), 0.01 * I / (h * h));
+    std::printf("glTF point light: foot point %.6f lx (gather), %.6f lx (leaf), I/h^2 = %.6f\n",
+                kLumensPerWatt * foot.E.y, leaf, I / (h * h));
 }

@@ -51,19 +51,22 @@ HEMIRAD_API Scene load_scene(const std::string& name_or_path, const BuiltinOptio
 ///    "luminaires": [                                    point sources (photometry.h)
 ///      {"ies": "downlight.ies", "position": [2, 2.8, 2], "aim": [0, -1, 0],
 ///       "rotation": 0, "multiplier": 1, "name": "D1"},
+///      {"ldt": "wallwasher.ldt", "position": [0, 2, 3]},  EULUMDAT (either key takes either
+///                                                          format: told apart by content)
 ///      {"candela": 500, "position": [1, 2, 1]},         isotropic, I [cd]
 ///      {"spot": {"candela": 2000, "cone": 20, "falloff": 10}, "position": [...], "aim": [...]}],
 ///    "cameras": [{"name": "door", "eye": [0, 1.6, 0], "target": [2, 1, 2], "up": [0, 1, 0],
 ///                 "fov": 60}],
 ///    "two_sided": ["Glass", "Curtain"]}       surface groups whose polygons are two-sided
 ///
-/// A luminaire is exactly one of `ies`, `candela`, `spot`; `position` is required; `aim` (the
-/// nadir, gamma = 0; default straight down, [0, -1, 0]), `rotation` (of the C planes about the
+/// A luminaire is exactly one of `ies`, `ldt`, `candela`, `spot`; `position` is required; `aim`
+/// (the nadir, gamma = 0; default straight down, [0, -1, 0]), `rotation` (of the C planes about the
 /// aim, degrees, counterclockwise seen from above; default 0), `multiplier` (> 0, default 1)
 /// and `name` (default L1, L2, ...) are optional. A spot has `candela` within `cone` degrees
 /// of the aim, falling linearly to 0 over `falloff` more degrees (default 0). A camera needs
 /// `eye` and `target`; `up` defaults to [0, 1, 0], `fov` (vertical, degrees) to 40; the first
-/// camera is the default view. Groups of the same name in several files are one group.
+/// camera is the default view. Groups of the same name in several files are one group; the
+/// included glTF files' lights come first among the luminaires.
 /// Unknown keys are errors naming the key; every error names the file and the line. Lengths
 /// are in the OBJ's units, which must be metres for lux.
 HEMIRAD_API Scene load_scene_json(const std::string& path, const ObjOptions& obj = {});
@@ -85,7 +88,11 @@ HEMIRAD_API bool is_scene_json(const std::string& path);
 ///    alpha are not used (the last two warned); a primitive without a material gets 'default';
 ///  - perspective cameras (a node's -z is the view direction, +y up, yfov vertical): the first
 ///    in the order the node tree is walked is the default view;
-///  - surface groups: a mesh node's name, else its material's name, else "node N".
+///  - surface groups: a mesh node's name, else its material's name, else "node N";
+///  - KHR_lights_punctual point and spot lights: luminaires (photometry.h) at the node's world
+///    position, `intensity` in candela times the luminance of `color` (warned when not white),
+///    a spot down the node's -z with gltf_spot_distribution(inner, outer); `range` ignored;
+///    directional lights warned and skipped. Named by the light, else the node, else light<k>.
 /// Units: glTF lengths are metres, and hemirad takes them as its scene unit: irradiance is per
 /// m², `--lux` applies. Errors name the file and the element ("accessor 3", "node 5"):
 /// accessors or views outside their buffers, indices outside the vertices, non-finite numbers,

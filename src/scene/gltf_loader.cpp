@@ -5,7 +5,8 @@
 // node), each node's matrix or translation * rotation * scale composed down the tree; meshes'
 // triangle primitives (POSITION, TEXCOORD_0, indices of any component type); materials'
 // baseColorFactor (reflectance, linear) and baseColorTexture (its TEXCOORD_0 only), emissiveFactor
-// times KHR_materials_emissive_strength (emitted radiance); perspective cameras. Every bound is
+// times KHR_materials_emissive_strength (emitted radiance); perspective cameras; point and spot
+// lights of KHR_lights_punctual (luminaires). Every bound is
 // checked here (TinyGLTF checks few): an accessor that reaches outside its buffer view, a view
 // outside its buffer, an index outside the vertices is an InputError naming the file and the
 // element ("accessor 3"), never a crash.
@@ -130,11 +131,14 @@ class GltfReader {
         scene.source = path_;
         // Extensions: KHR_materials_emissive_strength is read; the others are named once.
         std::string unread;
+        const auto known = [](const std::string& e) {
+            return e == "KHR_materials_emissive_strength" || e == "KHR_lights_punctual";
+        };
         for (const std::string& e : m_.extensionsUsed)
-            if (e != "KHR_materials_emissive_strength") unread += (unread.empty() ? "" : ", ") + e;
+            if (!known(e)) unread += (unread.empty() ? "" : ", ") + e;
         if (!unread.empty()) warnings_.push_back(path_ + ": extensions not read: " + unread);
         for (const std::string& e : m_.extensionsRequired)
-            if (e != "KHR_materials_emissive_strength")
+            if (!known(e))
                 warnings_.push_back(path_ + ": the file requires extension " + e +
                                     ", which is not read: the scene may not be what it shows");
         const std::vector<int> roots = root_nodes();
@@ -258,12 +262,86 @@ class GltfReader {
         const glm::dmat4 world = parent * local(index, node);
         if (node.mesh >= 0) add_mesh(scene, index, node, world);
         if (node.camera >= 0) add_camera(scene, index, node, world);
+        const auto light = node.extensions.find("KHR_lights_punctual");
+        if (light != node.extensions.end()) add_light(scene, index, node, light->second, world);
         if (node.skin >= 0)
             warn_once("skin", "node " + std::to_string(index) +
                                   ": skins are ignored (the bind pose is used)");
         stack.push_back(index);
         for (int c : node.children) visit(scene, c, world, stack);
         stack.pop_back();
+    }
+
+    /// KHR_lights_punctual: a point or spot light at the node becomes a luminaire (photometry.h)
+    /// of the light's intensity [cd] times the luminance of its colour (luminaires are white);
+    /// a spot points down the node's -z with gltf_spot_distribution(). Directional lights are
+    /// warned and skipped; `range` is ignored (physical inverse-square falloff).
+    void add_light(Scene& scene, int index, const tinygltf::Node& node, const tinygltf::Value& ext,
+                   const glm::dmat4& world) {
+        const std::string nname = "node " + std::to_string(index);
+        if (!ext.IsObject() || !ext.Has("light") || !ext.Get("light").IsInt())
+            throw error(nname + ": KHR_lights_punctual needs an integer 'light'");
+        const int k = ext.Get("light").GetNumberAsInt();
+        if (k < 0 || std::size_t(k) >= m_.lights.size())
+            throw error(nname + " refers to light " + std::to_string(k) +
+                        ", which does not exist (" + std::to_string(m_.lights.size()) + " lights)");
+        const tinygltf::Light& g = m_.lights[std::size_t(k)];
+        Luminaire l;
+        l.name = !g.name.empty()      ? g.name
+                 : !node.name.empty() ? node.name
+                                      : "light" + std::to_string(k);
+        const std::string what = "light " + std::to_string(k) + " ('" + l.name + "')";
+        if (g.type == "directional") {
+            warn_once("directional " + std::to_string(k),
+                      "directional light " + l.name + ": not supported yet (ignored)");
+            return;
+        }
+        if (g.type != "point" && g.type != "spot")
+            throw error(what + ": unknown type '" + g.type + "' (point, spot or directional)");
+        dvec3 colour(1.0);
+        if (g.color.size() == 3)
+            colour = dvec3(g.color[0], g.color[1], g.color[2]);
+        else if (!g.color.empty())
+            throw error(what + ": color needs 3 numbers");
+        for (int c = 0; c < 3; ++c)
+            if (!std::isfinite(colour[c]) || colour[c] < 0)
+                throw error(what + ": color " + num(colour[c]) + " must be a number >= 0");
+        if (!std::isfinite(g.intensity) || g.intensity < 0)
+            throw error(what + ": intensity " + num(g.intensity) + " must be >= 0 (candela)");
+        // Luminance weights of linear sRGB (Rec. 709), as --lux uses.
+        const double y = 0.2126 * colour.x + 0.7152 * colour.y + 0.0722 * colour.z;
+        if (colour.x != colour.y || colour.y != colour.z)
+            warn_once("colour " + std::to_string(k),
+                      what + ": color (" + num(colour.x) + ", " + num(colour.y) + ", " +
+                          num(colour.z) +
+                          ") is not modelled (luminaires are white): its "
+                          "luminance " +
+                          num(y) + " scales the intensity");
+        const double candela = g.intensity * y;
+        l.position = dvec3(world * glm::dvec4(0, 0, 0, 1));
+        l.aim = dvec3(world * glm::dvec4(0, 0, -1, 0)); // a spot shines down its local -z
+        for (int c = 0; c < 3; ++c)
+            if (!std::isfinite(l.position[c]) || !std::isfinite(l.aim[c]))
+                throw error(nname + ": the transform of " + what + " is not finite");
+        if (g.type == "point") {
+            l.kind = "point";
+            l.distribution = isotropic_distribution(candela);
+            l.aim = dvec3(0, -1, 0);
+        } else {
+            l.kind = "spot";
+            const double inner = g.spot.innerConeAngle, outer = g.spot.outerConeAngle;
+            if (!(inner >= 0 && inner < outer && outer <= std::numbers::pi / 2))
+                throw error(what + ": innerConeAngle " + num(inner) + " and outerConeAngle " +
+                            num(outer) + " must satisfy 0 <= inner < outer <= pi/2 (radians)");
+            const double deg = 180 / std::numbers::pi;
+            l.distribution = gltf_spot_distribution(candela, inner * deg, outer * deg);
+        }
+        try {
+            l.orient();
+        } catch (const InputError&) {
+            throw error(nname + ": the transform of " + what + " has no direction (-z is 0)");
+        }
+        scene.luminaires.push_back(std::move(l));
     }
 
     void add_camera(Scene& scene, int index, const tinygltf::Node& node, const glm::dmat4& world) {

@@ -1,90 +1,89 @@
-// IES LM-63 photometric files (photometry.h). The layout (LM-63-2002 §5; 1986-1995 alike):
+// IES LM-63 photometric files (photometry.h). The layout (LM-63-2002 §5; 1986-2019 alike):
 //
-//   IESNA:LM-63-2002            format line (1991: "IESNA91"; 1986: none)
+//   IESNA:LM-63-2002            format line (1991: "IESNA91"; 2019: "IES:LM-63-2019"; 1986: none)
 //   [KEYWORD] value ...          keyword lines (1986: free text)
-//   TILT=NONE                    (INCLUDE or a file name: tilt data, refused here)
+//   TILT=NONE                    (INCLUDE: a tilt block follows; or a tilt file's name)
 //   lamps  lumens/lamp  multiplier  #vertical  #horizontal  type  units  width length height
 //   ballast-factor  future-use (1991/1995: ballast-lamp factor)  input-watts
 //   vertical angles, horizontal angles, then the candela values plane by plane (all the
 //   vertical angles of the first horizontal angle, then the next plane, ...)
 //
 // After TILT= the values are separated by blanks, commas or line breaks, anywhere.
-#include <cctype>
+//
+// Read with a warning, as files in the wild have them: a format line that is none of the
+// standard ones ("IESNA95", Radiance's examples: read as LM-63-1995); TILT=INCLUDE (the tilt
+// block is read and not applied) or a tilt file (not read); photometric type B (floodlights),
+// converted to type C by resampling (type_b_to_c below).
+#include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
-#include <sstream>
+#include <numbers>
 
-#include "core/parse.h"
 #include "hemirad/error.h"
 #include "hemirad/photometry.h"
+#include "scene/photometric_text.h"
 
 namespace hemirad {
 
 namespace {
 
-struct Token {
-    std::string text;
-    int line = 0;
+using photometric::fail;
+using photometric::Reader;
+using photometric::trim;
+using photometric::upper;
+using photometric::where;
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// A type B table: I(H, V) bilinear on the tabulated angles, mirrored where a range starts at
+// 0 (symmetric), 0 outside the ranges.
+struct TypeB {
+    std::vector<double> v, h; // [deg], increasing
+    std::vector<double> cd;   // cd[ih * v.size() + iv]
+
+    static double lookup(const std::vector<double>& a, double x, std::size_t& k) {
+        k = std::size_t(std::upper_bound(a.begin(), a.end(), x) - a.begin());
+        k = std::clamp<std::size_t>(k, 1, a.size() - 1) - 1;
+        return std::clamp((x - a[k]) / (a[k + 1] - a[k]), 0.0, 1.0);
+    }
+    double operator()(double H, double V) const {
+        if (h.front() == 0) H = std::abs(H);
+        if (v.front() == 0) V = std::abs(V);
+        if (V < v.front() || V > v.back() || (h.size() > 1 && (H < h.front() || H > h.back())))
+            return 0;
+        std::size_t iv, ih = 0;
+        const double tv = lookup(v, V, iv);
+        const double th = h.size() > 1 ? lookup(h, H, ih) : 0;
+        const auto row = [&](std::size_t i) {
+            const double* r = &cd[i * v.size()];
+            return (1 - tv) * r[iv] + tv * r[iv + 1];
+        };
+        return h.size() > 1 ? (1 - th) * row(ih) + th * row(ih + 1) : row(0);
+    }
 };
 
-std::string trim(const std::string& s) {
-    const auto a = s.find_first_not_of(" \t\r\n");
-    if (a == std::string::npos) return "";
-    const auto b = s.find_last_not_of(" \t\r\n");
-    return s.substr(a, b - a + 1);
-}
-
-std::string upper(std::string s) {
-    for (char& c : s) c = char(std::toupper(static_cast<unsigned char>(c)));
-    return s;
-}
-
-class Reader {
-  public:
-    Reader(std::vector<Token> tokens, const std::string& path, int last_line)
-        : tokens_(std::move(tokens)), path_(path), last_line_(last_line) {}
-
-    /// The next value as a finite number; `what` names it in messages.
-    double number(const std::string& what, int& line) {
-        if (next_ >= tokens_.size())
-            throw InputError(path_, last_line_, "the file ends where " + what + " was expected");
-        const Token& t = tokens_[next_++];
-        line = t.line;
-        double x = 0; // out of range: inf (refused) or 0, as strtod reads it
-        const char* b = t.text.data();
-        const NumberRead r = read_double(b, b + t.text.size(), x);
-        if (!r.found(b) || r.end != b + t.text.size() || !std::isfinite(x))
-            throw InputError(path_, t.line, what + ": expected a number, got '" + t.text + "'");
-        return x;
-    }
-    double number(const std::string& what) {
-        int line;
-        return number(what, line);
-    }
-    /// A whole number (written as one, e.g. "3" or "3.0").
-    int integer(const std::string& what, int& line) {
-        const double x = number(what, line);
-        if (x != std::floor(x) || std::abs(x) > 1e6)
-            throw InputError(path_, line,
-                             what + ": expected a whole number, got '" + tokens_[next_ - 1].text +
-                                 "'");
-        return int(x);
-    }
-    const std::string& last_text() const { return tokens_[next_ - 1].text; }
-    bool done() const { return next_ >= tokens_.size(); }
-    const Token& peek() const { return tokens_[next_]; }
-
-  private:
-    std::vector<Token> tokens_;
-    std::size_t next_ = 0;
-    std::string path_;
-    int last_line_;
-};
-
-[[noreturn]] void fail(const std::string& path, int line, const std::string& what,
-                       const std::string& value, const std::string& why) {
-    throw InputError(path, line, what + " " + value + ": " + why);
+// Type B to type C. Type B's polar axis is the luminaire's horizontal (tilt) axis: a direction
+// at vertical angle V (the plane through that axis, turned up or down) and horizontal angle H
+// (from that plane towards the axis) is cos H (cos V beam + sin V up) + sin H left. Here the beam
+// (H = V = 0) is the type C nadir (the luminaire's aim), "up" (V > 0) is C = 0 and "left"
+// (H > 0) is C = 90:
+//   sin H = sin(gamma) sin(C),  tan V = tan(gamma) cos(C).
+// Type B covers the hemisphere about the beam, gamma <= 90, resampled every 0.5 degrees in gamma
+// and 1 degree in C (the bilinear interpolant of the B table, sampled: lumens within 0.1 % of
+// the B table's own for tables of 1-5 degree steps).
+CandelaDistribution type_b_to_c(const TypeB& b) {
+    CandelaDistribution d;
+    d.symmetry = HorizontalSymmetry::None;
+    for (int j = 0; j <= 180; ++j) d.gamma.push_back(0.5 * j);
+    for (int i = 0; i <= 360; ++i) d.c.push_back(i);
+    d.candela.reserve(d.gamma.size() * d.c.size());
+    for (double C : d.c)
+        for (double g : d.gamma) {
+            const double sg = std::sin(g * kDeg), cg = std::cos(g * kDeg);
+            const double H = std::asin(std::clamp(sg * std::sin(C * kDeg), -1.0, 1.0)) / kDeg;
+            const double V = std::atan2(sg * std::cos(C * kDeg), cg) / kDeg;
+            d.candela.push_back(b(H, V));
+        }
+    return d;
 }
 
 } // namespace
@@ -98,34 +97,32 @@ std::string IesFile::keyword(const std::string& name) const {
 IesFile parse_ies(const std::string& text, const std::string& path) {
     IesFile f;
     f.path = path;
-    std::vector<std::string> lines;
-    {
-        std::istringstream in(text);
-        std::string l;
-        while (std::getline(in, l)) {
-            if (!l.empty() && l.back() == '\r') l.pop_back();
-            lines.push_back(l);
-        }
-    }
+    const std::vector<std::string> lines = photometric::split_lines(text);
     if (lines.empty()) throw InputError(path, 0, "empty file (not an IES photometric file)");
 
     // Header: format line, keywords, up to TILT=.
-    std::size_t k = 0;
-    std::string first = trim(lines[0]);
-    if (first.size() >= 3 && static_cast<unsigned char>(first[0]) == 0xEF) first = first.substr(3);
+    std::size_t k = 1;
+    const std::string first = trim(lines[0]);
     const std::string head = upper(first);
-    if (head.rfind("IESNA:LM-63-2002", 0) == 0)
-        f.format = "LM-63-2002", k = 1;
-    else if (head.rfind("IESNA:LM-63-1995", 0) == 0)
-        f.format = "LM-63-1995", k = 1;
-    else if (head.rfind("IESNA91", 0) == 0)
-        f.format = "LM-63-1991", k = 1;
-    else if (head.rfind("IESNA", 0) == 0)
-        throw InputError(path, 1,
-                         "unknown format line '" + first +
-                             "' (expected IESNA:LM-63-2002, IESNA:LM-63-1995 or IESNA91)");
-    else
-        f.format = "LM-63-1986";
+    if (head.rfind("IESNA:LM-63-2002", 0) == 0) {
+        f.format = "LM-63-2002";
+    } else if (head.rfind("IES:LM-63-2019", 0) == 0) {
+        f.format = "LM-63-2019";
+    } else if (head.rfind("IESNA:LM-63-1995", 0) == 0) {
+        f.format = "LM-63-1995";
+    } else if (head.rfind("IESNA91", 0) == 0) {
+        f.format = "LM-63-1991";
+    } else if (head.rfind("IES", 0) == 0) {
+        // "IESNA95" (Radiance's examples), "IESNA:LM-63-1999", ...: the 1995 layout, whose
+        // ballast-lamp factor is applied (2002 made it "future use", always 1 in practice).
+        f.format = "LM-63-1995";
+        f.warnings.push_back(where(path, 1) + "format line '" + first +
+                             "' is none of LM-63's (IESNA:LM-63-2002, IESNA:LM-63-1995, "
+                             "IESNA91, IES:LM-63-2019): read as LM-63-1995");
+    } else {
+        f.format = "LM-63-1986"; // no format line: keywords or free text up to TILT=
+        k = 0;
+    }
     std::size_t tilt_line = lines.size();
     for (; k < lines.size(); ++k) {
         const std::string l = trim(lines[k]);
@@ -149,24 +146,33 @@ IesFile parse_ies(const std::string& text, const std::string& path) {
         throw InputError(path, 0, "no TILT= line (not an IES photometric file?)");
     const std::string tilt_text = trim(lines[tilt_line]);
     const std::string tilt = trim(tilt_text.substr(tilt_text.find('=') + 1));
-    if (upper(tilt) != "NONE")
-        throw InputError(path, int(tilt_line) + 1,
-                         "TILT=" + tilt +
-                             ": only TILT=NONE is supported (tilt data, which "
-                             "changes the output with the lamp's inclination, is not read)");
+    const int tilt_at = int(tilt_line) + 1;
 
-    std::vector<Token> tokens;
-    for (std::size_t i = tilt_line + 1; i < lines.size(); ++i) {
-        std::string l = lines[i];
-        for (char& c : l)
-            if (c == ',' || c == '\t' || c == '\r') c = ' ';
-        std::istringstream in(l);
-        std::string t;
-        while (in >> t) tokens.push_back({t, int(i) + 1});
-    }
-    Reader r(std::move(tokens), path, int(lines.size()));
-
+    Reader r(photometric::tokens(lines, tilt_line + 1, true), path, int(lines.size()));
     int line = 0;
+    if (upper(tilt) == "INCLUDE") {
+        // LM-63-2002 §5.5: lamp-to-luminaire geometry, the number of angles, the angles, the
+        // multiplying factors. Read (so that the table after them is found) and not applied.
+        const int geometry = r.integer("TILT=INCLUDE lamp-to-luminaire geometry", line);
+        if (geometry < 1 || geometry > 3)
+            fail(path, line, "TILT=INCLUDE lamp-to-luminaire geometry", r.last_text(),
+                 "must be 1, 2 or 3");
+        const int n = r.integer("TILT=INCLUDE number of tilt angles", line);
+        if (n < 0 || n > 100000)
+            fail(path, line, "TILT=INCLUDE number of tilt angles", r.last_text(),
+                 "must be in 0..100000");
+        for (int i = 0; i < 2 * n; ++i)
+            r.number(std::string(i < n ? "tilt angle " : "tilt multiplying factor ") +
+                     std::to_string(i % n + 1) + " of " + std::to_string(n));
+        f.warnings.push_back(where(path, tilt_at) + "TILT=INCLUDE: the " + std::to_string(n) +
+                             " tilt factors (lamp output against the luminaire's inclination) "
+                             "are not applied: the distribution is the one measured");
+    } else if (upper(tilt) != "NONE") {
+        f.warnings.push_back(where(path, tilt_at) + "TILT=" + tilt +
+                             ": the tilt file is not read (its factors are not applied: the "
+                             "distribution is the one measured)");
+    }
+
     f.lamps = r.integer("number of lamps", line);
     if (f.lamps < 1)
         fail(path, line, "number of lamps", r.last_text(), "must be a whole number >= 1");
@@ -184,12 +190,13 @@ IesFile parse_ies(const std::string& text, const std::string& path) {
     if (nh < 1 || nh > 100000)
         fail(path, line, "number of horizontal angles", r.last_text(), "must be in 1..100000");
     f.photometric_type = r.integer("photometric type", line);
-    if (f.photometric_type != 1) {
-        const char* name = f.photometric_type == 2   ? " (type B)"
-                           : f.photometric_type == 3 ? " (type A)"
-                                                     : "";
-        fail(path, line, "photometric type", r.last_text() + name, "only type C (1) is supported");
+    const int type_line = line;
+    if (f.photometric_type != 1 && f.photometric_type != 2) {
+        const char* name = f.photometric_type == 3 ? " (type A)" : "";
+        fail(path, line, "photometric type", r.last_text() + name,
+             "only types C (1) and B (2) are supported");
     }
+    const bool type_b = f.photometric_type == 2;
     f.units = r.integer("units type", line);
     if (f.units != 1 && f.units != 2)
         fail(path, line, "units type", r.last_text(), "must be 1 (feet) or 2 (metres)");
@@ -198,95 +205,110 @@ IesFile parse_ies(const std::string& text, const std::string& path) {
     f.height = r.number("luminous opening height");
     f.ballast_factor = r.number("ballast factor", line);
     if (!(f.ballast_factor > 0)) fail(path, line, "ballast factor", r.last_text(), "must be > 0");
-    const double blp = r.number(
-        f.format == "LM-63-2002" ? "future use value" : "ballast-lamp photometric factor", line);
-    if (f.format != "LM-63-2002") {
+    const bool future_use = f.format == "LM-63-2002" || f.format == "LM-63-2019";
+    const double blp =
+        r.number(future_use ? "future use value" : "ballast-lamp photometric factor", line);
+    if (!future_use) {
         if (!(blp > 0))
             fail(path, line, "ballast-lamp photometric factor", r.last_text(), "must be > 0");
         f.ballast_lamp_factor = blp;
     }
     f.input_watts = r.number("input watts");
 
+    // The angles as written, for messages, with their lines.
+    const auto read_angles = [&](int n, const char* what, std::vector<double>& a,
+                                 std::vector<std::string>& text, std::vector<int>& at_line) {
+        a.resize(std::size_t(n));
+        for (int i = 0; i < n; ++i) {
+            a[std::size_t(i)] = r.number(std::string(what) + " angle " + std::to_string(i + 1) +
+                                             " of " + std::to_string(n),
+                                         line);
+            text.push_back(r.last_text());
+            at_line.push_back(line);
+            if (i > 0 && !(a[std::size_t(i)] > a[std::size_t(i) - 1]))
+                fail(path, line, std::string(what) + " angle", r.last_text(),
+                     std::string(what) + " angles must increase (the one before is " +
+                         text[std::size_t(i) - 1] + ")");
+        }
+    };
+    std::vector<double> va, ha;
+    std::vector<std::string> v_text, h_text;
+    std::vector<int> v_line, h_line;
+    read_angles(nv, "vertical", va, v_text, v_line);
+    read_angles(nh, "horizontal", ha, h_text, h_line);
+
     CandelaDistribution& d = f.distribution;
-    d.gamma.resize(std::size_t(nv));
-    int first_v_line = 0, last_v_line = 0;
-    std::string first_v, last_v; // as written
-    std::string prev;
-    for (int i = 0; i < nv; ++i) {
-        if (i > 0) prev = r.last_text();
-        d.gamma[i] =
-            r.number("vertical angle " + std::to_string(i + 1) + " of " + std::to_string(nv), line);
-        if (i == 0) first_v_line = line, first_v = r.last_text();
-        last_v_line = line, last_v = r.last_text();
-        if (i > 0 && !(d.gamma[i] > d.gamma[i - 1]))
-            fail(path, line, "vertical angle", r.last_text(),
-                 "vertical angles must increase (the one before is " + prev + ")");
+    if (type_b) {
+        // LM-63-2002 §5.18-5.19: type B vertical angles -90 (or 0: symmetric) to 90,
+        // horizontal angles -90 (or 0: laterally symmetric) to 90.
+        if (va.front() != -90 && va.front() != 0)
+            fail(path, v_line.front(), "first vertical angle", v_text.front(),
+                 "must be -90 or 0 for type B photometry");
+        if (va.back() != 90)
+            fail(path, v_line.back(), "last vertical angle", v_text.back(),
+                 "must be 90 for type B photometry");
+        if (nh > 1 && ha.front() != -90 && ha.front() != 0)
+            fail(path, h_line.front(), "first horizontal angle", h_text.front(),
+                 "must be -90 or 0 for type B photometry");
+        if (nh > 1 && ha.back() != 90)
+            fail(path, h_line.back(), "last horizontal angle", h_text.back(),
+                 "must be 90 for type B photometry");
+        if (nh == 1 && ha.front() != 0)
+            fail(path, h_line.front(), "horizontal angle", h_text.front(),
+                 "a single horizontal angle must be 0");
+    } else {
+        if (va.front() != 0 && va.front() != 90)
+            fail(path, v_line.front(), "first vertical angle", v_text.front(),
+                 "must be 0 or 90 for type C photometry");
+        if (va.back() != 90 && va.back() != 180)
+            fail(path, v_line.back(), "last vertical angle", v_text.back(),
+                 "must be 90 or 180 for type C photometry");
+        const double c_first = ha.front(), c_last = ha.back();
+        if (c_first == 0 && c_last == 0)
+            d.symmetry = HorizontalSymmetry::Axial;
+        else if (c_first == 0 && c_last == 90)
+            d.symmetry = HorizontalSymmetry::Quadrant;
+        else if (c_first == 0 && c_last == 180)
+            d.symmetry = HorizontalSymmetry::Bilateral;
+        else if (c_first == 90 && c_last == 270)
+            d.symmetry = HorizontalSymmetry::Bilateral90;
+        else if (c_first == 0 && c_last == 360)
+            d.symmetry = HorizontalSymmetry::None;
+        else if (c_first != 0 && c_first != 90)
+            fail(path, h_line.front(), "first horizontal angle", h_text.front(),
+                 "must be 0 (or 90, with 270 as the last) for type C photometry");
+        else
+            fail(path, h_line.back(), "last horizontal angle", h_text.back(),
+                 "must be 0, 90, 180 or 360 (the symmetry of the distribution; 270 after a "
+                 "first angle of 90)");
     }
-    if (d.gamma.front() != 0 && d.gamma.front() != 90)
-        fail(path, first_v_line, "first vertical angle", first_v,
-             "must be 0 or 90 for type C photometry");
-    if (d.gamma.back() != 90 && d.gamma.back() != 180)
-        fail(path, last_v_line, "last vertical angle", last_v,
-             "must be 90 or 180 for type C photometry");
-    d.c.resize(std::size_t(nh));
-    int first_h_line = 0, last_h_line = 0;
-    std::string first_h, last_h;     // as written
-    std::vector<std::string> h_text; // every horizontal angle as written
-    for (int i = 0; i < nh; ++i) {
-        if (i > 0) prev = r.last_text();
-        d.c[i] = r.number("horizontal angle " + std::to_string(i + 1) + " of " + std::to_string(nh),
-                          line);
-        h_text.push_back(r.last_text());
-        if (i == 0) first_h_line = line, first_h = r.last_text();
-        last_h_line = line, last_h = r.last_text();
-        if (i > 0 && !(d.c[i] > d.c[i - 1]))
-            fail(path, line, "horizontal angle", r.last_text(),
-                 "horizontal angles must increase (the one before is " + prev + ")");
-    }
-    const double c_first = d.c.front(), c_last = d.c.back();
-    if (c_first == 0 && c_last == 0)
-        d.symmetry = HorizontalSymmetry::Axial;
-    else if (c_first == 0 && c_last == 90)
-        d.symmetry = HorizontalSymmetry::Quadrant;
-    else if (c_first == 0 && c_last == 180)
-        d.symmetry = HorizontalSymmetry::Bilateral;
-    else if (c_first == 90 && c_last == 270)
-        d.symmetry = HorizontalSymmetry::Bilateral90;
-    else if (c_first == 0 && c_last == 360)
-        d.symmetry = HorizontalSymmetry::None;
-    else if (c_first != 0 && c_first != 90)
-        fail(path, first_h_line, "first horizontal angle", first_h,
-             "must be 0 (or 90, with 270 as the last) for type C photometry");
-    else
-        fail(path, last_h_line, "last horizontal angle", last_h,
-             "must be 0, 90, 180 or 360 (the symmetry of the distribution; 270 after a first "
-             "angle of 90)");
 
     const double scale = f.candela_multiplier * f.ballast_factor * f.ballast_lamp_factor;
-    d.candela.resize(std::size_t(nv) * std::size_t(nh));
-    for (int h = 0; h < nh; ++h)
-        for (int v = 0; v < nv; ++v) {
-            const double x = r.number("candela value " + std::to_string(v + 1) + " of plane " +
-                                          std::to_string(h + 1) + " (C = " + h_text[h] + ")",
-                                      line);
-            if (x < 0) fail(path, line, "candela value", r.last_text(), "must be >= 0");
-            d.candela[std::size_t(h) * nv + v] = x * scale;
-        }
-    if (!r.done())
-        throw InputError(path, r.peek().line,
-                         "'" + r.peek().text + "' after the last of the " +
-                             std::to_string(nv * nh) + " candela values (" + std::to_string(nv) +
-                             " vertical x " + std::to_string(nh) +
-                             " horizontal angles): the counts do not match the table");
+    std::vector<double> candela =
+        photometric::read_table(r, path, nh, nv, scale, "candela value", [&](int h, int v) {
+            return "candela value " + std::to_string(v + 1) + " of plane " + std::to_string(h + 1) +
+                   " (" + (type_b ? "H = " : "C = ") + h_text[std::size_t(h)] + ")";
+        });
+    photometric::expect_end(r, path, std::to_string(nv * nh) + " candela values",
+                            std::to_string(nv) + " vertical x " + std::to_string(nh) +
+                                " horizontal angles");
+    if (type_b) {
+        d = type_b_to_c(TypeB{va, ha, std::move(candela)});
+        f.warnings.push_back(
+            where(path, type_line) +
+            "photometric type B: converted to type C (resampled every 0.5 degrees in gamma, 1 "
+            "in C): the beam axis (H = V = 0) is the aim, V turns towards C = 0, H towards C = "
+            "90");
+    } else {
+        d.gamma = std::move(va);
+        d.c = std::move(ha);
+        d.candela = std::move(candela);
+    }
     return f;
 }
 
 IesFile read_ies(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, 0, "cannot open IES file");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return parse_ies(s.str(), path);
+    return parse_ies(photometric::read_text(path, "IES file"), path);
 }
 
 } // namespace hemirad

@@ -165,6 +165,28 @@ CandelaDistribution spot_distribution(double candela, double cone, double fallof
     return d;
 }
 
+CandelaDistribution gltf_spot_distribution(double candela, double inner, double outer) {
+    if (!(inner >= 0 && inner <= outer && outer > 0 && outer <= 180))
+        throw InputError("spot cone angles inner " + num(inner) + ", outer " + num(outer) +
+                         " must satisfy 0 <= inner <= outer <= 180 degrees, outer > 0");
+    if (outer - inner < 1e-6) return spot_distribution(candela, outer, 0);
+    // KHR_lights_punctual's angular attenuation: t^2, t linear in cos(gamma) from 1 at the inner
+    // cone to 0 at the outer; 32 steps across the band.
+    constexpr int kSteps = 32;
+    CandelaDistribution d;
+    d.c = {0.0};
+    const double ci = std::cos(inner * kDeg), co = std::cos(outer * kDeg);
+    if (inner > 0) d.gamma.push_back(0), d.candela.push_back(candela);
+    for (int k = 0; k <= kSteps; ++k) {
+        const double g = inner + (outer - inner) * k / kSteps;
+        const double t = std::clamp((std::cos(g * kDeg) - co) / (ci - co), 0.0, 1.0);
+        d.gamma.push_back(g);
+        d.candela.push_back(candela * t * t);
+    }
+    if (outer < 180) d.gamma.push_back(180), d.candela.push_back(0);
+    return d;
+}
+
 void Luminaire::orient() {
     const double len = glm::length(aim);
     if (!(len > 0) || !std::isfinite(len))

@@ -230,20 +230,25 @@ void merge(Scene& out, const Scene& part) {
         out.polygons.push_back(p);
     }
     out.cameras.insert(out.cameras.end(), part.cameras.begin(), part.cameras.end());
+    out.luminaires.insert(out.luminaires.end(), part.luminaires.begin(), part.luminaires.end());
     for (const std::string& w : part.warnings)
         if (w.rfind(kNoEmitterWarning, 0) != 0) out.warnings.push_back(w);
 }
 
-Luminaire read_luminaire(const Reader& r, const json& j, const std::string& at, std::size_t k) {
-    r.only_keys(j, at,
-                {"name", "ies", "candela", "spot", "position", "aim", "rotation", "multiplier"});
+Luminaire read_luminaire(const Reader& r, const json& j, const std::string& at, std::size_t k,
+                         std::vector<std::string>& warnings) {
+    r.only_keys(
+        j, at,
+        {"name", "ies", "ldt", "candela", "spot", "position", "aim", "rotation", "multiplier"});
     Luminaire l;
     l.name = j.contains("name") ? r.string(j["name"], at + "/name") : "L" + std::to_string(k + 1);
-    const int kinds = int(j.contains("ies")) + int(j.contains("candela")) + int(j.contains("spot"));
+    const int kinds = int(j.contains("ies")) + int(j.contains("ldt")) + int(j.contains("candela")) +
+                      int(j.contains("spot"));
     if (kinds != 1)
-        r.fail(at, kinds == 0 ? "a luminaire needs one of 'ies' (an IES file), 'candela' (an "
-                                "isotropic point source) or 'spot'"
-                              : "a luminaire has one of 'ies', 'candela' and 'spot', not several");
+        r.fail(at, kinds == 0 ? "a luminaire needs one of 'ies' or 'ldt' (a photometric file), "
+                                "'candela' (an isotropic point source) or 'spot'"
+                              : "a luminaire has one of 'ies', 'ldt', 'candela' and 'spot', not "
+                                "several");
     if (!j.contains("position")) r.fail(at, "a luminaire needs a 'position' [x, y, z]");
     l.position = r.vec3(j["position"], at + "/position");
     if (j.contains("aim")) l.aim = r.vec3(j["aim"], at + "/aim");
@@ -253,17 +258,20 @@ Luminaire read_luminaire(const Reader& r, const json& j, const std::string& at, 
         if (!(l.multiplier > 0))
             r.fail(at + "/multiplier", "must be > 0, got " + Reader::dump(j["multiplier"]));
     }
-    if (j.contains("ies")) {
-        l.kind = "ies";
-        l.file = r.string(j["ies"], at + "/ies");
-        IesFile f;
+    if (j.contains("ies") || j.contains("ldt")) {
+        // Either key takes either format: the file's content tells them apart.
+        const std::string key = j.contains("ies") ? "ies" : "ldt";
+        l.file = r.string(j[key], at + "/" + key);
+        PhotometricFile f;
         try {
-            f = read_ies(r.resolve(l.file));
+            f = read_photometric_file(r.resolve(l.file));
         } catch (const InputError& e) {
-            r.fail(at + "/ies", e.what());
+            r.fail(at + "/" + key, e.what());
         }
-        l.distribution = f.distribution;
-        l.rated_lumens = f.rated_lumens() * l.multiplier;
+        l.kind = f.format;
+        l.distribution = std::move(f.distribution);
+        l.rated_lumens = f.rated_lumens * l.multiplier;
+        for (std::string& w : f.warnings) warnings.push_back(std::move(w));
     } else if (j.contains("candela")) {
         l.kind = "candela";
         const double I = r.number(j["candela"], at + "/candela");
@@ -390,7 +398,7 @@ Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
         if (!ls.is_array()) r.fail("/luminaires", "expected a list of luminaires [{...}, ...]");
         for (std::size_t k = 0; k < ls.size(); ++k)
             scene.luminaires.push_back(
-                read_luminaire(r, ls[k], "/luminaires/" + std::to_string(k), k));
+                read_luminaire(r, ls[k], "/luminaires/" + std::to_string(k), k, scene.warnings));
     }
     if (doc.contains("cameras")) {
         const json& cs = doc["cameras"];

@@ -113,7 +113,10 @@ printf '{"include": ["black_floor.obj"],\n "luminaires": [{"ies": "none.ies", "p
 expect_error noies.json "noies.json:2:" "none.ies"
 printf 'IESNA:LM-63-2002\n[TEST] t\nTILT=INCLUDE\n1\n' > tilt.ies
 printf '{"include": ["black_floor.obj"],\n "luminaires": [{"ies": "tilt.ies", "position": [1, 2, 1]}]}\n' > tilt.json
-expect_error tilt.json "tilt.json:2:" "tilt.ies:3:" "TILT=INCLUDE"
+expect_error tilt.json "tilt.json:2:" "tilt.ies:4:" "TILT=INCLUDE number of tilt angles"
+printf 'company\r\n1\r\n7\r\n' > bad.ldt
+printf '{"include": ["black_floor.obj"],\n "luminaires": [{"ldt": "bad.ldt", "position": [1, 2, 1]}]}\n' > ldt.json
+expect_error ldt.json "ldt.json:2:" "luminaires\[0\].ldt" "bad.ldt:3: Isym (symmetry indicator) '7'"
 printf '{"include": ["black_floor.obj"],\n "luminaires": [{"candela": 5, "spot": {"candela": 5, "cone": 20}, "position": [1, 2, 1]}]}\n' > two.json
 expect_error two.json "two.json:2:" "not several"
 printf '{"include": ["black_floor.obj"],\n "luminaires": [{"spot": {"candela": 5, "cone": 20, "falof": 5}, "position": [1, 2, 1]}]}\n' > spot.json

@@ -148,8 +148,9 @@ int cmd_scene(int argc, char** argv) {
         for (const Luminaire& l : scene.luminaires) total += l.lumens();
         std::printf("luminaires %zu, %.6g lm installed\n", scene.luminaires.size(), total);
         for (const Luminaire& l : scene.luminaires)
-            std::printf("  %-12s %-7s %9.6g lm  at (%.4g, %.4g, %.4g)%s%s\n", l.name.c_str(),
-                        l.kind.c_str(), l.lumens(), l.position.x, l.position.y, l.position.z,
+            std::printf("  %-12s %-7s %9.6g lm  at (%.4g, %.4g, %.4g), %.6g cd max%s%s\n",
+                        l.name.c_str(), l.kind.c_str(), l.lumens(), l.position.x, l.position.y,
+                        l.position.z, l.multiplier * l.distribution.max_candela(),
                         l.file.empty() ? "" : "  ", l.file.c_str());
     }
     return 0;

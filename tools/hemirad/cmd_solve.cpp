@@ -175,9 +175,11 @@ int cmd_solve(int argc, char** argv) {
             std::fprintf(stderr, "hemirad: %zu luminaires, %.6g lm installed:\n",
                          scene.luminaires.size(), total);
             for (const Luminaire& l : scene.luminaires)
-                std::fprintf(stderr, "hemirad:   %-10s %-7s %9.6g lm at (%g, %g, %g)%s%s\n",
+                std::fprintf(stderr,
+                             "hemirad:   %-10s %-7s %9.6g lm at (%g, %g, %g), %g cd max%s%s\n",
                              l.name.c_str(), l.kind.c_str(), l.lumens(), l.position.x, l.position.y,
-                             l.position.z, l.file.empty() ? "" : "  ", l.file.c_str());
+                             l.position.z, l.multiplier * l.distribution.max_candela(),
+                             l.file.empty() ? "" : "  ", l.file.c_str());
         }
     }
     std::ofstream log_file;
