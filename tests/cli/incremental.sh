@@ -35,7 +35,7 @@ opts=(--tolerance 0.001 --grid floor:5x5 --grid-out)
     2> inc.txt
 grep -q "resumed incrementally from base.sol after [0-9]* shots: 1 luminaires" inc.txt ||
     { cat inc.txt; exit 1; }
-grep -q "this run took [0-9]* shots (resumed incrementally from [0-9]*)" inc.txt ||
+grep -q "this run took [0-9]* shots in [0-9.]* s (resumed incrementally from [0-9]*)" inc.txt ||
     { cat inc.txt; exit 1; }
 # The same edit on the command line, fresh (no --resume): the same grid.
 "$HEMIRAD" solve room.json --luminaire-multiplier D1=0.5 "${opts[@]}" fresh.csv --quiet

@@ -158,11 +158,13 @@ int cmd_solve(int argc, char** argv) {
     }
     Solver solver(scene, so);
     if (world.size() > 1) solver.set_collective(&world);
-    long shots_before = 0; // of the resumed solution
+    long shots_before = 0;     // of the resumed solution
+    double seconds_before = 0; // [s]
     ResumeEdits resume_edits;
     if (resumed) {
         resume_edits = resume_solution(solver, *resumed, exports.resume);
         shots_before = solver.shots();
+        seconds_before = solver.seconds();
         if (!quiet && resume_edits.any())
             std::fprintf(stderr,
                          "hemirad: resumed incrementally from %s after %ld shots: %zu "
@@ -251,8 +253,8 @@ int cmd_solve(int argc, char** argv) {
                      solver.shots(), solver.seconds(), solver.error_bound(), so.tolerance,
                      solver.row_sums().min, solver.row_sums().max, solver.row_sums().guarded);
     if (!quiet && resumed)
-        std::fprintf(stderr, "hemirad: this run took %ld shots (%s from %ld)\n",
-                     solver.shots() - shots_before,
+        std::fprintf(stderr, "hemirad: this run took %ld shots in %.2f s (%s from %ld)\n",
+                     solver.shots() - shots_before, solver.seconds() - seconds_before,
                      resume_edits.any() ? "resumed incrementally" : "resumed", shots_before);
     if (!quiet && solver.unshot_fraction() >= 1e-3) {
         const dvec3 a = h.unshot_estimate();
@@ -285,6 +287,7 @@ int cmd_solve(int argc, char** argv) {
             resume["file"] = exports.resume;
             resume["shots_before"] = shots_before;
             resume["shots_this_run"] = solver.shots() - shots_before;
+            resume["seconds_this_run"] = solver.seconds() - seconds_before;
             resume["incremental"] = resume_edits.any();
             resume["luminaires_changed"] = resume_edits.luminaires;
             resume["polygons_changed"] = resume_edits.polygons;
