@@ -115,8 +115,10 @@ class IncrementalEqualsFresh : public ::testing::TestWithParam<EditCase> {};
 
 // The bound: ||B - B*||_1 <= tol Phi for each (paper 001 eq. 27 with the solver's error bound
 // <= tol), so ||B_incremental - B_fresh||_1 <= 2 tol Phi, Phi the edited scene's emitted
-// power (the error bound is relative to it). Leaf by leaf no bound holds, but with tol 1e-4
-// a leaf off by 1 % of the mean radiosity would take ~40 times the L1 budget in this room.
+// power (the error bound is relative to it). Per leaf the worst case is that budget on one
+// leaf (1/97 of the area): 2 tol Phi / A_leaf, about 1 % of the mean radiosity here (whose
+// power, B_mean A, is of the order of Phi in this closed room). Measured: the L1 difference
+// 1-2 % of its bound, leaves within 1e-5 of the mean.
 TEST_P(IncrementalEqualsFresh, WithinBothErrorBounds) {
     const EditCase& c = GetParam();
     const double tol = 1e-4;

@@ -88,7 +88,7 @@ struct ShotRecord {
     long cluster = -1;
     std::uint32_t cluster_polygons = 0;
     PatchAddress shooter;
-    double shooter_power = 0; ///< unshot power shot, sum over RGB [W]
+    double shooter_power = 0; ///< unshot power shot, sum over RGB of its magnitude [W]
     std::size_t links = 0;
     int refined = 0;          ///< shooters replaced by their children before this shot
                               ///< (enclosed centre, or parallax above the limit)
