@@ -79,6 +79,15 @@ std::vector<dvec3> rows3(const py::handle& obj, const char* what) {
     return out;
 }
 
+/// A colour given as one number (grey) or three (R, G, B).
+dvec3 rgb_arg(const py::handle& obj, const char* what) {
+    if (py::isinstance<py::float_>(obj) || py::isinstance<py::int_>(obj))
+        return dvec3(obj.cast<double>());
+    const std::vector<double> v = obj.cast<std::vector<double>>();
+    if (v.size() != 3) throw py::value_error(std::string(what) + " must be a number or (r, g, b)");
+    return dvec3(v[0], v[1], v[2]);
+}
+
 /// The Python value of an option of `o` (solver_options.h): str, float, int or bool.
 py::object option_value(const SolverOption& option, const SolverOptions& o) {
     const SolverOption::Field f = option.field(const_cast<SolverOptions&>(o));
@@ -345,6 +354,30 @@ PYBIND11_MODULE(hemirad, m) {
              "without the gather a point on no surface gets NaN).")
         .def("group_statistics", &PySolver::group_statistics,
              "Per surface group: area, E_avg, E_min, E_max (RGB irradiance), flux (RGB, W).")
+        .def(
+            "set_luminaire_multiplier",
+            [](PySolver& s, const std::string& name, double f) {
+                s.solver().set_luminaire_multiplier(name, f);
+            },
+            py::arg("name"), py::arg("multiplier"),
+            "Sets a luminaire's multiplier (0 = off); solve() then re-converges incrementally "
+            "from the current solution (the difference of its power is shot).")
+        .def(
+            "set_reflectance",
+            [](PySolver& s, const std::string& group, const py::handle& rho) {
+                s.solver().set_reflectance(group, rgb_arg(rho, "rho"));
+            },
+            py::arg("group"), py::arg("rho"),
+            "Sets a surface group's reflectance (a number or (r, g, b), each in [0, 1)); "
+            "solve() then re-converges incrementally.")
+        .def(
+            "set_emission",
+            [](PySolver& s, const std::string& group, const py::handle& Ke) {
+                s.solver().set_emission(group, rgb_arg(Ke, "Ke"));
+            },
+            py::arg("group"), py::arg("Ke"),
+            "Sets a surface group's emitted radiance Ke [W sr^-1 unit^-2] (a number or (r, g, "
+            "b), >= 0); solve() then re-converges incrementally.")
         .def_property_readonly("shot_log", &PySolver::shot_log,
                                "Every shot so far, as dicts (the keys of `--log`).")
         .def("report", &PySolver::report, "The JSON report of `hemirad solve --report`, as a dict.")

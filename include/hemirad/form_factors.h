@@ -19,7 +19,7 @@ struct Shooter {
     PatchAddress address;
     PatchGeometry geometry;    ///< corners, centre, area of the shooting patch
     dvec3 normal{0.0};         ///< the polygon's unit normal
-    double unshot_power = 0;   ///< sum over RGB of dB*area [W]; providers may adapt to it
+    double unshot_power = 0;   ///< sum over RGB of |dB|*area [W]; providers may adapt to it
     double power_fraction = 1; ///< unshot_power / total unshot power now (0..1]
 };
 

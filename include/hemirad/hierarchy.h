@@ -62,6 +62,13 @@ class HEMIRAD_API Hierarchy {
     void push_pull_all();
     bool needs_push_pull(std::uint32_t polygon) const { return dirty_[polygon] != 0; }
 
+    /// An edit of the polygon's material (incremental re-solving, solver.h): its reflectance
+    /// changed by drho (untextured polygons only) and its emitted radiosity by dBe, already in
+    /// the scene. Every leaf's unshot radiosity grows by drho*H + dBe (H as pushed so far; the
+    /// irradiance not yet pushed is reflected with the new reflectance when it is), then the
+    /// polygon is push-pulled. Returns the irradiance power it has received, H*area [W].
+    dvec3 add_unshot(std::uint32_t polygon, const dvec3& drho, const dvec3& dBe);
+
     /// Sets the unshot radiosity of the subtree under `a` to zero (it has been shot) and
     /// updates its ancestors and the polygon's unshot power. Requires a pushed polygon.
     void clear_unshot(const PatchAddress& a);

@@ -183,7 +183,7 @@ struct HEMIRAD_API Luminaire {
     glm::dvec3 position{0.0}; ///< [scene units; metres for lux]
     glm::dvec3 aim{0.0, -1.0, 0.0}; ///< the photometric nadir (gamma = 0), unit (orient())
     double rotation = 0;   ///< turns the C planes about the aim, counterclockwise from above [deg]
-    double multiplier = 1; ///< scales the intensity (and lumens), > 0
+    double multiplier = 1; ///< scales the intensity (and lumens), >= 0 (0 = off)
     double rated_lumens = 0; ///< lamp lumens of the IES file times multiplier (0: none stated)
     CandelaDistribution distribution; ///< [cd], multiplier not applied
     /// Derived by orient(): the C = 0 and C = 90 directions, unit, perpendicular to aim.

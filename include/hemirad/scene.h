@@ -109,6 +109,11 @@ struct HEMIRAD_API Scene {
     int find_group(const std::string& name) const;
     /// FNV-1a hash of the geometry and materials, for checking saved solutions.
     std::uint64_t content_hash() const;
+    /// FNV-1a hash of the geometry alone (scene_edit.h): polygons, groups, textures and the
+    /// luminaires' placement and distributions, not the materials' reflectance and emission
+    /// nor the luminaires' multipliers. A solution resumes incrementally across a photometry
+    /// edit, not across a change of geometry.
+    std::uint64_t geometry_hash() const;
 };
 
 /// Adds a polygon after validating it: non-finite corners throw InputError; a degenerate

@@ -25,6 +25,13 @@
 //             ...   u64 cluster count C, then C*1: u8 view code per cluster-tree node,
 //                   f64 landed power, f64 shot power (Solver::Counters; version 3: older
 //                   files are read as C = 0 and no power shot)
+//             8     u64 geometry hash (Scene::geometry_hash(); version 4)
+//             P*48  per polygon: f64[3] reflectance, f64[3] emitted radiosity (version 4)
+//             ...   u32 luminaire count L, then L*24: f64[3] power per luminaire (version 4)
+//
+// Version 4 keeps the geometry apart from the photometry (scene_edit.h): a solution resumes
+// for a scene of the same geometry whose materials' reflectance or emission or luminaires'
+// multipliers differ, and re-converges from it (incremental re-solving, solver.h).
 //     end-8   8     u64 FNV-1a 64 hash of every byte before it (detects corruption)
 //
 // (str = u32 byte length + bytes.) A file that is truncated, corrupt, of another version or
@@ -36,12 +43,13 @@
 #include <utility>
 #include <vector>
 
+#include "hemirad/scene_edit.h"
 #include "hemirad/solver.h"
 #include "hemirad/visibility.h"
 
 namespace hemirad {
 
-inline constexpr std::uint32_t kSolutionFileVersion = 3;
+inline constexpr std::uint32_t kSolutionFileVersion = 4;
 
 /// An option that affects results, as (command-line name, exact value text).
 using SolutionOption = std::pair<std::string, std::string>;
@@ -62,6 +70,10 @@ struct SolutionFile {
     std::string scene_source;
     std::vector<SolutionOption> options;
     Solver::State state;
+    /// Version 4 and later: the geometry hash and the photometry the state was computed for.
+    bool has_photometry = false;
+    std::uint64_t geometry_hash = 0;
+    Photometry photometry;
 };
 
 /// The bytes of a solution file for the solver's current state (call between steps, before
@@ -75,13 +87,23 @@ HEMIRAD_API SolutionFile parse_solution(const std::string& bytes, const std::str
 /// Reads and parses a solution file. Throws InputError (missing, truncated, corrupt).
 HEMIRAD_API SolutionFile read_solution(const std::string& path);
 
-/// Checks that `file` (read from `path`) was saved for `scene` (loaded from `scene_path`):
-/// throws InputError naming both files and both hashes if not.
+/// Checks that `file` (read from `path`) was saved for `scene` (loaded from `scene_path`), or,
+/// for a version 4 file, for a scene of the same geometry (Scene::geometry_hash(): its
+/// photometry may differ): throws InputError naming both files and both hashes if not.
 HEMIRAD_API void check_solution_scene(const SolutionFile& file, const std::string& path,
                                       const Scene& scene, const std::string& scene_path);
 
+/// What resume_solution() found edited: luminaires and polygons whose photometry differs from
+/// the saved one (Solver::apply_photometry()); none for a resume of the same scene.
+struct ResumeEdits {
+    std::size_t luminaires = 0, polygons = 0;
+    bool any() const { return luminaires + polygons > 0; }
+};
 /// Restores the solver's state from `file` (read from `path`); the solver must have been built
-/// for the same scene and with the saved options. Throws InputError naming `path`.
-HEMIRAD_API void resume_solution(Solver& solver, const SolutionFile& file, const std::string& path);
+/// for the same scene, or one of the same geometry (check_solution_scene()), and with the
+/// saved options. Where the scene's photometry differs from the saved one, the differences
+/// become unshot power and further steps re-converge. Throws InputError naming `path`.
+HEMIRAD_API ResumeEdits resume_solution(Solver& solver, const SolutionFile& file,
+                                        const std::string& path);
 
 } // namespace hemirad

@@ -88,7 +88,7 @@ struct ShotRecord {
     long cluster = -1;
     std::uint32_t cluster_polygons = 0;
     PatchAddress shooter;
-    double shooter_power = 0; ///< unshot power shot, sum over RGB [W]
+    double shooter_power = 0; ///< unshot power shot, sum over RGB of its magnitude [W]
     std::size_t links = 0;
     int refined = 0;          ///< shooters replaced by their children before this shot
                               ///< (enclosed centre, or parallax above the limit)
@@ -114,6 +114,7 @@ HEMIRAD_API const char* to_string(StopReason r);
 
 class ClusterTree;
 class PlaneCuts;
+struct Photometry;
 
 class HEMIRAD_API Solver {
   public:
@@ -123,6 +124,10 @@ class HEMIRAD_API Solver {
     /// Uses the given provider (built for discretise(scene, options.hierarchy)).
     Solver(const Scene& scene, const SolverOptions& options,
            std::unique_ptr<FormFactorProvider> provider);
+    /// As Solver(const Scene&, ...), for a scene the solver may edit: the incremental
+    /// re-solving edits below change its materials and luminaires (never its geometry), so
+    /// that read-outs, reports and saved files see them.
+    Solver(Scene& scene, const SolverOptions& options);
     ~Solver();
     Solver(const Solver&) = delete;
     Solver& operator=(const Solver&) = delete;
@@ -160,12 +165,15 @@ class HEMIRAD_API Solver {
 
     /// Error bound in the power (L1, area-weighted) norm, relative to the emitted power:
     /// max over channels of U_c / ((1 - rho_max) * Phi_c) (paper 001 eq. 27 and 33). U and Phi
-    /// count the luminaires' power (a luminaire not yet shot is all unshot).
+    /// count the luminaires' power (a luminaire not yet shot is all unshot). In a channel that
+    /// an edit left emitting nothing, Phi_c is the most it emitted before (incremental.cpp).
     double error_bound() const;
-    /// Unshot power, RGB [W]: the patches' plus the luminaires' not yet shot.
+    /// Unshot power, RGB [W]: the patches' plus the luminaires' not yet shot, each polygon's
+    /// and luminaire's by its magnitude per channel (an edit's negative power counts too).
     dvec3 unshot_power() const;
     /// Per luminaire (Scene::luminaires), its unshot power, RGB [W]: all of it until it has
-    /// shot (once, over the whole sphere), then 0.
+    /// shot (once, over the whole sphere), then 0; after an edit of its multiplier, the
+    /// difference (negative where light was removed).
     const std::vector<dvec3>& luminaire_unshot() const { return luminaire_unshot_; }
     double unshot_fraction() const;
     dvec3 emitted_power() const { return emitted_; }
@@ -194,6 +202,31 @@ class HEMIRAD_API Solver {
     /// solution() puts it into every read-out (Hierarchy::unshot_estimate()), so that an
     /// unconverged solution does not read low; the error bound still counts U as unshot.
     dvec3 ambient_irradiance() const;
+
+    // Incremental re-solving (issue 21; incremental.cpp, scene_edit.h). An edit of the
+    // scene's light turns the difference into unshot power, negative where light is removed,
+    // and the usual shooting distributes it (the solver runs again: step() until converged):
+    //   - a luminaire's multiplier f0 -> f1 (0 = off): (f1 - f0) P of unshot power; its direct
+    //     light in read-outs (FinalGather) uses the new multiplier;
+    //   - a reflectance rho0 -> rho1: dB = (rho1 - rho0) H on every leaf patch (H, the
+    //     irradiance received, is kept per node: hierarchy.h); light received but not yet
+    //     pushed to the leaves is reflected with rho1 when it is;
+    //   - an emission Be0 -> Be1: dB = Be1 - Be0.
+    // Shooter selection and the error bound count unshot power by its magnitude,
+    // |dB| per channel (unshot_power()); the estimate of the light still to arrive
+    // (ambient_irradiance()) keeps its sign. Throws InputError for a bad name or value
+    // (scene_edit.h), or if the solver was built from a const Scene.
+    /// Sets the multiplier of the luminaire named `name` (>= 0; 0 = off).
+    void set_luminaire_multiplier(const std::string& name, double multiplier);
+    /// Sets the reflectance of surface group `group` (each channel in [0, 1); untextured).
+    void set_reflectance(const std::string& group, const dvec3& rho);
+    /// Sets the emitted radiance Ke [W sr^-1 unit^-2] of surface group `group` (>= 0).
+    void set_emission(const std::string& group, const dvec3& Ke);
+    /// Turns the difference between the scene's photometry now and `before` (the photometry
+    /// the solver's state was computed for: a resumed solution of an edited scene) into unshot
+    /// power as the edits above do. Throws InputError if the sizes differ or a textured
+    /// polygon's reflectance changed. Returns how many luminaires and polygons changed.
+    std::pair<std::size_t, std::size_t> apply_photometry(const Photometry& before);
 
     /// Resets the timer origin (for resumed runs) and restores counters (save/resume).
     struct Counters {
@@ -229,6 +262,8 @@ class HEMIRAD_API Solver {
 
   private:
     void init();
+    Scene& editable_scene(const char* what); ///< the scene, if built from a modifiable one
+    dvec3 signed_unshot_power() const;       ///< unshot power, signs kept
     PatchAddress select_shooter(std::uint32_t polygon);
     void shoot_luminaire(std::size_t k, ShotRecord& rec);
     /// Delivers the links of a shot of unshot radiosity dB from a shooter of area A_S (a
@@ -248,6 +283,7 @@ class HEMIRAD_API Solver {
     bool must_split_cluster(std::uint32_t node) const;
 
     const Scene* scene_;
+    Scene* editable_ = nullptr; ///< the same scene, when built from a modifiable one
     SolverOptions options_;
     Hierarchy hierarchy_;
     std::unique_ptr<FormFactorProvider> provider_;
@@ -276,6 +312,7 @@ class HEMIRAD_API Solver {
     long shots_ = 0;
     StopReason stop_ = StopReason::Running;
     dvec3 emitted_{0.0}, absorbed_{0.0}, escaped_{0.0};
+    dvec3 peak_emitted_{0.0}; ///< the most emitted before and after edits (incremental.cpp)
     double rho_max_ = 0;
     double min_size_ = 0;
     double max_size_ = 0;

@@ -176,6 +176,18 @@ void Hierarchy::clear_unshot(const PatchAddress& a) {
     unshot_[a.polygon] = dvec3(root.dB) * double(root.area);
 }
 
+dvec3 Hierarchy::add_unshot(std::uint32_t p, const dvec3& drho, const dvec3& dBe) {
+    HEMIRAD_CHECK(drho == dvec3(0.0) || rho_base_.empty() || rho_base_[p] == kUntextured);
+    const int depth = disc_.depth[p];
+    Node* leaves = nodes_.data() + base_[p] + level_offset(depth);
+    const glm::vec3 d_rho(drho), d_be(dBe);
+    for (std::uint32_t i = 0; i < (1u << (2 * depth)); ++i)
+        leaves[i].dB += d_rho * leaves[i].H + d_be;
+    push_pull(p); // pulls the leaves' dB up and recomputes the polygon's unshot power
+    const Node& root = nodes_[base_[p]];
+    return dvec3(root.H) * double(root.area);
+}
+
 dvec3 Hierarchy::total_unshot_power() const {
     dvec3 u(0.0);
     for (const dvec3& p : unshot_) u += p;

@@ -242,12 +242,42 @@ int Scene::find_group(const std::string& name) const {
     return -1;
 }
 
-std::uint64_t Scene::content_hash() const {
+namespace {
+
+/// FNV-1a 64 over the bytes given (Scene::content_hash(), Scene::geometry_hash()).
+struct Fnv1a {
     std::uint64_t h = 1469598103934665603ull;
-    const auto mix = [&h](const void* data, std::size_t size) {
+    void operator()(const void* data, std::size_t size) {
         const auto* b = static_cast<const unsigned char*>(data);
         for (std::size_t i = 0; i < size; ++i) h = (h ^ b[i]) * 1099511628211ull;
-    };
+    }
+};
+
+void mix_textures(Fnv1a& mix, const Scene& s) {
+    mix(s.texcoords.data(), s.texcoords.size() * sizeof(TexCoords));
+    for (const Texture& t : s.textures) {
+        const Texture::Level& l = t.levels[0];
+        mix(&l.width, sizeof l.width);
+        mix(&l.height, sizeof l.height);
+        mix(l.texels.data(), l.texels.size() * sizeof(glm::vec3));
+    }
+}
+
+/// A luminaire's placement and distribution; its multiplier when `multiplier`.
+void mix_luminaire(Fnv1a& mix, const Luminaire& l, bool multiplier) {
+    for (const dvec3* v : {&l.position, &l.aim, &l.c0}) mix(v, sizeof(dvec3));
+    if (multiplier) mix(&l.multiplier, sizeof l.multiplier);
+    const CandelaDistribution& d = l.distribution;
+    mix(d.gamma.data(), d.gamma.size() * sizeof(double));
+    mix(d.c.data(), d.c.size() * sizeof(double));
+    mix(d.candela.data(), d.candela.size() * sizeof(double));
+    mix(&d.symmetry, sizeof d.symmetry);
+}
+
+} // namespace
+
+std::uint64_t Scene::content_hash() const {
+    Fnv1a mix;
     for (const Polygon& p : polygons) {
         mix(&p.count, sizeof p.count);
         for (int i = 0; i < p.count; ++i) mix(&p.v[i], sizeof(dvec3));
@@ -262,26 +292,30 @@ std::uint64_t Scene::content_hash() const {
     // Textures change the solution (none: the hash of an untextured scene is what it was).
     if (!textures.empty() && !texcoords.empty()) {
         for (const Material& m : materials) mix(&m.texture, sizeof m.texture);
-        mix(texcoords.data(), texcoords.size() * sizeof(TexCoords));
-        for (const Texture& t : textures) {
-            const Texture::Level& l = t.levels[0];
-            mix(&l.width, sizeof l.width);
-            mix(&l.height, sizeof l.height);
-            mix(l.texels.data(), l.texels.size() * sizeof(glm::vec3));
-        }
+        mix_textures(mix, *this);
     }
     // Luminaires change the solution: their placement and distribution count (none: the hash
     // of a scene without luminaires is what it always was).
-    for (const Luminaire& l : luminaires) {
-        for (const dvec3* v : {&l.position, &l.aim, &l.c0}) mix(v, sizeof(dvec3));
-        mix(&l.multiplier, sizeof l.multiplier);
-        const CandelaDistribution& d = l.distribution;
-        mix(d.gamma.data(), d.gamma.size() * sizeof(double));
-        mix(d.c.data(), d.c.size() * sizeof(double));
-        mix(d.candela.data(), d.candela.size() * sizeof(double));
-        mix(&d.symmetry, sizeof d.symmetry);
+    for (const Luminaire& l : luminaires) mix_luminaire(mix, l, true);
+    return mix.h;
+}
+
+std::uint64_t Scene::geometry_hash() const {
+    Fnv1a mix;
+    const bool textured = !textures.empty() && !texcoords.empty();
+    for (const Polygon& p : polygons) {
+        mix(&p.count, sizeof p.count);
+        for (int i = 0; i < p.count; ++i) mix(&p.v[i], sizeof(dvec3));
+        mix(&p.group, sizeof p.group);
+        mix(&p.twin, sizeof p.twin);
+        if (textured) mix(&material_of(p).texture, sizeof(int));
     }
-    return h;
+    if (textured) mix_textures(mix, *this);
+    for (const Luminaire& l : luminaires) {
+        mix(l.name.data(), l.name.size() + 1);
+        mix_luminaire(mix, l, false);
+    }
+    return mix.h;
 }
 
 std::size_t make_two_sided(Scene& scene, const std::function<bool(std::uint32_t)>& pick) {

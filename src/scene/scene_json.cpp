@@ -255,8 +255,9 @@ Luminaire read_luminaire(const Reader& r, const json& j, const std::string& at, 
     if (j.contains("rotation")) l.rotation = r.number(j["rotation"], at + "/rotation");
     if (j.contains("multiplier")) {
         l.multiplier = r.number(j["multiplier"], at + "/multiplier");
-        if (!(l.multiplier > 0))
-            r.fail(at + "/multiplier", "must be > 0, got " + Reader::dump(j["multiplier"]));
+        if (!(l.multiplier >= 0) || !std::isfinite(l.multiplier))
+            r.fail(at + "/multiplier",
+                   "must be >= 0 (0 = off), got " + Reader::dump(j["multiplier"]));
     }
     if (j.contains("ies") || j.contains("ldt")) {
         // Either key takes either format: the file's content tells them apart.

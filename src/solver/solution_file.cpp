@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "hemirad/error.h"
 #include "hemirad/solver_options.h"
@@ -180,6 +181,12 @@ std::string solution_bytes(const Solver& solver) {
     for (std::uint8_t e : st.clusters) w.u8(e);
     w.f64(c.landed);
     w.f64(c.shot);
+    // Version 4: the geometry apart from the photometry (resuming an edited scene).
+    w.u64(scene.geometry_hash());
+    const Photometry ph = photometry(scene);
+    for (std::size_t p = 0; p < ph.rho.size(); ++p) w.dvec(ph.rho[p]), w.dvec(ph.exitance[p]);
+    w.u32(std::uint32_t(ph.luminaires.size()));
+    for (const dvec3& power : ph.luminaires) w.dvec(power);
     w.u64(fnv1a(w.bytes().data(), w.bytes().size()));
     return std::move(w.bytes());
 }
@@ -262,7 +269,22 @@ SolutionFile parse_solution(const std::string& bytes, const std::string& path) {
         for (std::uint8_t& e : f.state.clusters) e = r.u8("cluster view code");
         c.landed = r.f64("landed power");
         c.shot = r.f64("shot power");
-    } else { // versions 1 and 2 coded parallax 16 steps to an octave from 2 up to 255
+    }
+    if (version >= 4) { // version 4: the geometry hash and the photometry apart
+        f.geometry_hash = r.u64("geometry hash");
+        r.count(polygons, 48, "polygons' photometry");
+        f.photometry.rho.resize(polygons);
+        f.photometry.exitance.resize(polygons);
+        for (std::uint32_t p = 0; p < polygons; ++p) {
+            f.photometry.rho[p] = r.dvec("polygon reflectance");
+            f.photometry.exitance[p] = r.dvec("polygon exitance");
+        }
+        const std::uint64_t n_lum = r.count(r.u32("luminaire count"), 24, "luminaire powers");
+        f.photometry.luminaires.resize(n_lum);
+        for (dvec3& power : f.photometry.luminaires) power = r.dvec("luminaire power");
+        f.has_photometry = true;
+    }
+    if (version < 3) { // versions 1 and 2 coded parallax 16 steps to an octave from 2 up to 255
         for (std::uint8_t& e : f.state.enclosed)
             if (e >= 2) e = std::uint8_t(2 + (e - 2) / 2 > 127 ? 127 : 2 + (e - 2) / 2);
     }
@@ -290,13 +312,24 @@ SolutionFile read_solution(const std::string& path) {
 void check_solution_scene(const SolutionFile& file, const std::string& path, const Scene& scene,
                           const std::string& scene_path) {
     const std::uint64_t h = scene.content_hash();
-    if (file.scene_hash != h)
+    if (file.scene_hash == h) return;
+    if (!file.has_photometry)
         throw InputError(path + ": the solution was saved for another scene: " + file.scene_source +
                          " (content hash " + hash_text(file.scene_hash) + "), but " + scene_path +
-                         " has content hash " + hash_text(h) + " (geometry or materials differ)");
+                         " has content hash " + hash_text(h) +
+                         " (geometry or materials differ; a solution file of format version 4 "
+                         "or later resumes across an edit of materials or luminaire multipliers)");
+    const std::uint64_t g = scene.geometry_hash();
+    if (file.geometry_hash != g)
+        throw InputError(path + ": the solution was saved for another scene: " + file.scene_source +
+                         " (geometry hash " + hash_text(file.geometry_hash) + "), but " +
+                         scene_path + " has geometry hash " + hash_text(g) +
+                         " (its geometry differs: polygons, groups, textures or the luminaires' "
+                         "placement or distributions; only materials' reflectance and emission "
+                         "and luminaires' multipliers may change on resume)");
 }
 
-void resume_solution(Solver& solver, const SolutionFile& file, const std::string& path) {
+ResumeEdits resume_solution(Solver& solver, const SolutionFile& file, const std::string& path) {
     const std::vector<SolutionOption> now = solution_options(solver.options());
     for (const SolutionOption& saved : file.options) {
         for (const SolutionOption& o : now)
@@ -305,11 +338,17 @@ void resume_solution(Solver& solver, const SolutionFile& file, const std::string
                                  "saved with " + saved.first + " " + saved.second +
                                      ", but this solver has " + o.second);
     }
+    ResumeEdits edits;
     try {
         solver.restore_state(file.state);
+        // The scene's photometry now against the saved one: the differences become unshot
+        // power (incremental re-solving; nothing when they are equal).
+        if (file.has_photometry)
+            std::tie(edits.luminaires, edits.polygons) = solver.apply_photometry(file.photometry);
     } catch (const InputError& e) {
         throw InputError(path, 0, e.what());
     }
+    return edits;
 }
 
 } // namespace hemirad

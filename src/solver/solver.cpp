@@ -16,6 +16,9 @@
 namespace hemirad {
 
 using solver_detail::Clock;
+using solver_detail::has_negative;
+using solver_detail::magnitude;
+using solver_detail::node_power;
 using solver_detail::since;
 using solver_detail::sum;
 
@@ -104,6 +107,7 @@ void Solver::init() {
     // Polygons whose plane cuts a shooter: the hemicube shows them edge-on (plane_cuts.h).
     if (options_.shooter_parallax > 0) plane_cuts_ = std::make_unique<PlaneCuts>(*scene_, 1.0);
     emitted_ = scene_->emitted_power();
+    peak_emitted_ = emitted_;
     luminaire_unshot_.clear();
     for (const Luminaire& l : scene_->luminaires) luminaire_unshot_.push_back(dvec3(l.power()));
     rho_max_ = scene_->max_reflectance();
@@ -127,16 +131,20 @@ double Solver::seconds() const {
 }
 
 dvec3 Solver::unshot_power() const {
-    dvec3 u = hierarchy_.total_unshot_power();
-    for (const dvec3& l : luminaire_unshot_) u += l;
+    dvec3 u(0.0);
+    for (const dvec3& p : hierarchy_.unshot_powers()) u += glm::abs(p);
+    for (const dvec3& l : luminaire_unshot_) u += glm::abs(l);
     return u;
 }
 
 double Solver::unshot_fraction() const {
     const dvec3 u = unshot_power();
     double f = 0;
-    for (int c = 0; c < 3; ++c)
-        if (emitted_[c] > 0) f = std::max(f, u[c] / emitted_[c]);
+    for (int c = 0; c < 3; ++c) {
+        // A channel an edit switched off entirely: relative to what it emitted before.
+        const double e = emitted_[c] > 0 ? emitted_[c] : peak_emitted_[c];
+        if (e > 0) f = std::max(f, u[c] / e);
+    }
     return f;
 }
 
@@ -183,8 +191,7 @@ PatchAddress Solver::select_shooter(std::uint32_t polygon) {
         double best_power = -1;
         for (std::uint32_t c : patch_children(tri, a.level, a.index)) {
             const PatchAddress ca{polygon, a.level + 1, c};
-            const Hierarchy::Node& n = hierarchy_.node(ca);
-            const double power = double(n.dB.x + n.dB.y + n.dB.z) * double(n.area);
+            const double power = node_power(hierarchy_.node(ca));
             if (power > best_power) best_power = power, best = ca;
         }
         if (!options_.flat && !must_descend) {
@@ -209,15 +216,17 @@ bool Solver::step() {
     auto t0 = Clock::now();
     std::uint32_t polygon = 0;
     double best = -1;
+    bool negative = false; // an edit's negative power (incremental.cpp): no cluster shots
     for (std::uint32_t p = 0; p < scene_->polygons.size(); ++p) {
-        const double u = sum(hierarchy_.unshot_power(p));
+        const double u = magnitude(hierarchy_.unshot_power(p));
+        negative = negative || has_negative(hierarchy_.unshot_power(p));
         if (u > best) best = u, polygon = p;
     }
     // A luminaire competes with the polygons by its unshot power (all of it, until it shoots).
     std::size_t luminaire = 0;
     double best_luminaire = 0;
     for (std::size_t k = 0; k < luminaire_unshot_.size(); ++k) {
-        const double u = sum(luminaire_unshot_[k]);
+        const double u = magnitude(luminaire_unshot_[k]);
         if (u > best_luminaire) best_luminaire = u, luminaire = k;
     }
     rec.t_select = since(t0);
@@ -228,7 +237,7 @@ bool Solver::step() {
     }
     // Clusters: the descent from the cluster tree's root ends at a cluster, which shoots, or
     // at a single polygon, which shoots as a patch.
-    if (clusters_ && shoot_cluster(rec, polygon)) {
+    if (clusters_ && !negative && shoot_cluster(rec, polygon)) {
         finish_shot(rec, t_start);
         return true;
     }
@@ -265,7 +274,7 @@ PatchAddress Solver::shoot_patch(std::uint32_t polygon, ShotRecord& rec, dvec3& 
         shooter.normal = poly.normal;
         dB = dvec3(hierarchy_.node(sa).dB);
         area_s = double(hierarchy_.node(sa).area);
-        shooter.unshot_power = sum(dB) * area_s;
+        shooter.unshot_power = magnitude(dB) * area_s;
         const double total = sum(unshot_power());
         shooter.power_fraction = total > 0 ? std::min(1.0, shooter.unshot_power / total) : 1.0;
 
@@ -335,9 +344,10 @@ void Solver::shoot_luminaire(std::size_t k, ShotRecord& rec) {
     const dvec3 power = luminaire_unshot_[k];
     rec.luminaire = int(k);
     rec.shooter = {0xFFFFFFFFu, 0, 0};
-    rec.shooter_power = sum(power);
+    rec.shooter_power = magnitude(power);
     auto t0 = Clock::now();
-    provider_->shoot_point(scene_->luminaires[k], links_);
+    Luminaire spare;
+    provider_->shoot_point(solver_detail::shooting_luminaire(scene_->luminaires[k], spare), links_);
     rec.t_form_factors = since(t0);
     rec.ff_phases = provider_->last_timings();
     rec.links = links_.size();
@@ -349,8 +359,9 @@ void Solver::update_cluster_power() {
     const std::vector<ClusterTree::Node>& nodes = clusters_->nodes();
     for (std::size_t i = nodes.size(); i-- > 0;) {
         const ClusterTree::Node& n = nodes[i];
-        cluster_power_[i] = n.leaf() ? sum(hierarchy_.unshot_power(clusters_->order()[n.begin]))
-                                     : cluster_power_[n.left] + cluster_power_[n.right];
+        cluster_power_[i] = n.leaf()
+                                ? magnitude(hierarchy_.unshot_power(clusters_->order()[n.begin]))
+                                : cluster_power_[n.left] + cluster_power_[n.right];
     }
 }
 
@@ -606,17 +617,14 @@ bool Solver::cut_by_plane(const PatchAddress& a) const {
     const Polygon& poly = scene_->polygons[a.polygon];
     const double share = plane_cuts_->cut_share(a.polygon, patch_geometry(poly, a.level, a.index));
     if (share <= 0) return false;
-    const Hierarchy::Node& n = hierarchy_.node(a);
-    const double power = double(n.dB.x + n.dB.y + n.dB.z) * double(n.area);
-    return share * power > options_.shooter_parallax * sum(emitted_);
+    return share * node_power(hierarchy_.node(a)) > options_.shooter_parallax * sum(emitted_);
 }
 
 bool Solver::worth_probing(std::uint64_t node) const {
     const std::uint8_t code = view_[node];
     if (code == kViewUnknown) return true;
     if (measured(code) || options_.shooter_parallax <= 0) return false;
-    const Hierarchy::Node& n = hierarchy_.nodes()[node];
-    const double power = double(n.dB.x + n.dB.y + n.dB.z) * double(n.area);
+    const double power = node_power(hierarchy_.nodes()[node]);
     return code_parallax(code) * power > 0.25 * options_.shooter_parallax * sum(emitted_);
 }
 
@@ -624,8 +632,7 @@ bool Solver::must_split(std::uint64_t node) const {
     const std::uint8_t code = view_[node];
     if (code == kViewEnclosed) return true;
     if (code == kViewUnknown || options_.shooter_parallax <= 0) return false;
-    const Hierarchy::Node& n = hierarchy_.nodes()[node];
-    const double power = double(n.dB.x + n.dB.y + n.dB.z) * double(n.area);
+    const double power = node_power(hierarchy_.nodes()[node]);
     return code_parallax(code) * power > options_.shooter_parallax * sum(emitted_);
 }
 
@@ -657,7 +664,7 @@ dvec3 Solver::ambient_irradiance() const {
     if (area <= 0) return dvec3(0.0);
     const dvec3 rho = rho_area / area;
     const double r = shot_ > 0 ? std::clamp(landed_ / shot_, 0.0, 1.0) : 1.0;
-    return unshot_power() * r / ((dvec3(1.0) - rho * r) * area);
+    return signed_unshot_power() * r / ((dvec3(1.0) - rho * r) * area);
 }
 
 Solver::Counters Solver::counters() const {
@@ -722,7 +729,7 @@ void Solver::restore_state(const State& st) {
     if (!st.clusters.empty() || !cluster_view_.empty())
         expect("cluster view codes", st.clusters.size(), cluster_view_.size());
     for (std::size_t k = 0; k < st.luminaires.size(); ++k)
-        if (!finite(st.luminaires[k]) || st.luminaires[k].x < 0)
+        if (!finite(st.luminaires[k])) // negative after an edit (incremental.cpp)
             throw InputError("saved solver state: luminaire " + std::to_string(k) +
                              " has an invalid unshot power");
     for (std::size_t i = 0; i < st.nodes.size(); ++i) {

@@ -1,10 +1,15 @@
-// Small helpers shared by the solver's translation units (solver.cpp, solver_round.cpp).
+// Small helpers shared by the solver's translation units (solver.cpp, solver_round.cpp,
+// incremental.cpp).
 // Internal header.
 #pragma once
+
+#include <cmath>
 
 #include <glm/glm.hpp>
 
 #include "core/timer.h"
+#include "hemirad/hierarchy.h"
+#include "hemirad/photometry.h"
 
 namespace hemirad::solver_detail {
 
@@ -14,6 +19,31 @@ constexpr auto since = &seconds_since; ///< seconds since a time point (core/tim
 /// Sum of the RGB channels (a power or radiosity summed over the spectrum).
 inline double sum(const glm::dvec3& v) {
     return v.x + v.y + v.z;
+}
+
+/// Sum of the channels' magnitudes: how much unshot power or radiosity there is to shoot,
+/// also where an edit made it negative (incremental.cpp).
+inline double magnitude(const glm::dvec3& v) {
+    return std::abs(v.x) + std::abs(v.y) + std::abs(v.z);
+}
+inline bool has_negative(const glm::dvec3& v) {
+    return v.x < 0 || v.y < 0 || v.z < 0;
+}
+
+/// A node's unshot power by magnitude, summed over RGB [W] (the sum in float, as the node
+/// holds it: for non-negative values, bit for bit the sum of the channels).
+inline double node_power(const Hierarchy::Node& n) {
+    return double(std::abs(n.dB.x) + std::abs(n.dB.y) + std::abs(n.dB.z)) * double(n.area);
+}
+
+/// The luminaire a shot of luminaire `l` renders: itself, or, switched off by an edit
+/// (multiplier 0), a copy at multiplier 1 in `spare`: the form factors are per watt emitted,
+/// and its negative unshot power must still go out.
+inline const Luminaire& shooting_luminaire(const Luminaire& l, Luminaire& spare) {
+    if (l.multiplier > 0) return l;
+    spare = l;
+    spare.multiplier = 1;
+    return spare;
 }
 
 } // namespace hemirad::solver_detail

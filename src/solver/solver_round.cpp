@@ -83,11 +83,11 @@ bool Solver::step_round() {
     auto t0 = Clock::now();
     std::vector<Candidate> cands;
     for (std::size_t k = 0; k < luminaire_unshot_.size(); ++k) {
-        const double u = sum(luminaire_unshot_[k]);
+        const double u = solver_detail::magnitude(luminaire_unshot_[k]);
         if (u > 0) cands.push_back({u, int(k), 0});
     }
     for (std::uint32_t p = 0; p < scene_->polygons.size(); ++p) {
-        const double u = sum(hierarchy_.unshot_power(p));
+        const double u = solver_detail::magnitude(hierarchy_.unshot_power(p));
         if (u > 0) cands.push_back({u, -1, p});
     }
     const std::size_t k = std::min<std::size_t>(
@@ -119,9 +119,12 @@ bool Solver::step_round() {
             h.luminaire = c.luminaire;
             const dvec3 power = luminaire_unshot_[std::size_t(c.luminaire)];
             t0 = Clock::now();
-            provider_->shoot_point(scene_->luminaires[std::size_t(c.luminaire)], links_);
+            Luminaire spare;
+            provider_->shoot_point(solver_detail::shooting_luminaire(
+                                       scene_->luminaires[std::size_t(c.luminaire)], spare),
+                                   links_);
             mine.t_form_factors = since(t0);
-            mine.shooter_power = sum(power);
+            mine.shooter_power = solver_detail::magnitude(power);
             h.dB[0] = power.x, h.dB[1] = power.y, h.dB[2] = power.z;
             h.area = 1.0;
         } else {

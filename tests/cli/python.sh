@@ -4,7 +4,7 @@
 # (the final gather is seeded per point: deterministic; the CSV keeps 9 digits, hence 1e-7);
 # group statistics, the shot log and the progress callback agree with each other and with the
 # report; bad input raises a Python exception carrying hemirad's message; every option of the
-# options table is a keyword of hemirad.Solver.
+# options table is a keyword of hemirad.Solver; edits re-converge incrementally.
 set -euo pipefail
 HEMIRAD="$1"
 export PYTHONPATH="$(dirname "$HEMIRAD")/python"
@@ -100,6 +100,25 @@ assert hemirad.Solver(scene, memory_limit="4G", max_shots=1).options["memory_lim
 raises(TypeError, ["no_such_option"], lambda: hemirad.Solver(scene, no_such_option=1))
 raises(TypeError, ["max_shots"], lambda: hemirad.Solver(scene, max_shots=1.5))
 raises(ValueError, ["--shooter-parallax"], lambda: hemirad.Solver(scene, shooter_parallax=-1))
+# Incremental re-solving: an edit leaves the converged solver unconverged; solve() goes on
+# from its solution (fewer shots than the first solve) and the edit shows in the read-outs.
+# (A solver of its own, made after the temporary ones above: a solver that steps on after
+# another one in the process was destroyed gets wrong form factors, an open bug of the GL
+# context handling, not of the edits.)
+s = hemirad.Solver(scene, tolerance=0.02)
+assert s.solve() == "converged"
+first = s.shots
+ceiling = s.group_statistics()["ceiling"]["E_avg"]
+s.set_reflectance("floor", (0.2, 0.3, 0.4))
+s.set_emission("light", 8.5)
+assert not s.converged
+assert s.solve() == "converged" and s.shots - first < first, (s.shots, first)
+after = s.group_statistics()["ceiling"]["E_avg"]
+assert after[0] < 0.7 * ceiling[0], (after, ceiling)
+s.set_reflectance("floor", 0.5)
+raises(ValueError, ["--reflectance floor=1.5"], lambda: s.set_reflectance("floor", 1.5))
+raises(ValueError, ["no surface group 'roof'"], lambda: s.set_emission("roof", 1))
+raises(ValueError, ["no luminaire named 'L9'"], lambda: s.set_luminaire_multiplier("L9", 0))
 print("python: ok,", s.shots, "shots, max relative difference to the CLI", err,
       ";", len(keys), "options by keyword")
 PY

@@ -37,6 +37,7 @@
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"
 #include "hemirad/validation_scenes.h"
+#include "incremental.h"
 #include "mpi_scaling.h"
 #include "point_stats.h"
 #include "real_building.h"
@@ -170,6 +171,12 @@ std::vector<Spec> experiments() {
     v.push_back({"real_building",
                  "courtyard (65,776 triangles, point sources) and the office glb: default solve "
                  "vs reference at random points",
+                 cornell});
+    // Incremental re-solving (incremental.cpp): the office walk-through converged, then one
+    // downlight off and the spot halved, against a fresh solve of the edited project.
+    v.push_back({"incremental",
+                 "office.json to 0.1 %, D2 off and S1 halved: re-converge vs fresh solve, floor "
+                 "12x8",
                  cornell});
     // Scaling: seconds per shot vs leaf patches at 402 polygons, at a fixed hemicube
     // resolution (256) so that the pixels shaded stay the same and what grows is the
@@ -498,6 +505,7 @@ void run_child(const Spec& spec, const std::string& office) {
     if (spec.soak) return run_soak(spec);
     if (spec.name == "mpi_scaling") return bench::run_mpi_scaling();
     if (spec.name == "real_building") return bench::run_real_building(office);
+    if (spec.name == "incremental") return bench::run_incremental(HEMIRAD_BENCH_LIGHTING_OFFICE);
     auto context = gl::Context::create();
     std::string obj_path;
     std::uintmax_t obj_bytes = 0;

@@ -20,6 +20,7 @@
 #include "hemirad/readout.h"
 #include "hemirad/solver.h"
 #include "parallel/world.h"
+#include "scene_edits.h"
 #include "solve_outputs.h"
 
 namespace hemirad::cli {
@@ -86,6 +87,7 @@ int cmd_solve(int argc, char** argv) {
     ObjOptions obj;
     OutputOptions out;
     ExportOptions exports;
+    SceneEdits edits;
     ArgParser args("hemirad solve", "hemirad solve SCENE [options]",
                    "Solves the radiosity of a scene by progressive shooting until the error\n"
                    "bound falls under the tolerance, then writes what was asked for.\n"
@@ -104,6 +106,7 @@ int cmd_solve(int argc, char** argv) {
     args.option("--probe-out", &probes_out, "OUT.csv", "irradiance at the probe points");
     add_output_options(args, out);
     add_export_options(args, exports);
+    add_scene_edit_options(args, edits);
     args.flag("--quiet", &quiet, "print nothing but errors");
     add_scene_options(args, builtin, obj);
     if (!args.parse(argc, argv, 2)) return 0;
@@ -123,11 +126,13 @@ int cmd_solve(int argc, char** argv) {
     exports.lux = out.images.lux; // one --lux flag: false colour and grids
     exports.discontinuities = out.images.discontinuities == "on"; // images and lightmaps
     const std::vector<GridSpec> grid_specs = validate_export_options(exports);
+    validate_scene_edits(edits);
 
     // From here on SIGINT/SIGTERM end the solve at the end of a shot (or before the first),
     // with every requested output written.
     install_interrupt_handler();
-    const Scene scene = load_scene(scene_name, builtin, obj);
+    Scene scene = load_scene(scene_name, builtin, obj);
+    apply_scene_edits(edits, scene); // the solver edits no further: one scene throughout
     print_warnings(scene, quiet);
     // Everything that needs only the scene is checked before the first output is opened.
     for (const GridSpec& g : grid_specs) grid_polygons(scene, g);
@@ -153,9 +158,20 @@ int cmd_solve(int argc, char** argv) {
     }
     Solver solver(scene, so);
     if (world.size() > 1) solver.set_collective(&world);
+    long shots_before = 0;     // of the resumed solution
+    double seconds_before = 0; // [s]
+    ResumeEdits resume_edits;
     if (resumed) {
-        resume_solution(solver, *resumed, exports.resume);
-        if (!quiet)
+        resume_edits = resume_solution(solver, *resumed, exports.resume);
+        shots_before = solver.shots();
+        seconds_before = solver.seconds();
+        if (!quiet && resume_edits.any())
+            std::fprintf(stderr,
+                         "hemirad: resumed incrementally from %s after %ld shots: %zu "
+                         "luminaires and %zu polygons changed, error bound now %.3e\n",
+                         exports.resume.c_str(), solver.shots(), resume_edits.luminaires,
+                         resume_edits.polygons, solver.error_bound());
+        else if (!quiet)
             std::fprintf(stderr, "hemirad: resumed from %s after %ld shots\n",
                          exports.resume.c_str(), solver.shots());
     }
@@ -238,6 +254,10 @@ int cmd_solve(int argc, char** argv) {
                      was_interrupted ? "interrupted" : to_string(solver.stop_reason()),
                      solver.shots(), solver.seconds(), solver.error_bound(), so.tolerance,
                      solver.row_sums().min, solver.row_sums().max, solver.row_sums().guarded);
+    if (!quiet && resumed)
+        std::fprintf(stderr, "hemirad: this run took %ld shots in %.2f s (%s from %ld)\n",
+                     solver.shots() - shots_before, solver.seconds() - seconds_before,
+                     resume_edits.any() ? "resumed incrementally" : "resumed", shots_before);
     if (!quiet && solver.unshot_fraction() >= 1e-3) {
         const dvec3 a = h.unshot_estimate();
         std::fprintf(stderr,
@@ -264,7 +284,17 @@ int cmd_solve(int argc, char** argv) {
         for (const GridResult& g : grids)
             std::fprintf(stderr, "hemirad: grid %s\n", grid_summary(g, exports.lux).c_str());
     if (!report.empty()) {
-        write_report(report, solver, scene, grids, exports.lux);
+        Json resume = Json::object();
+        if (resumed) {
+            resume["file"] = exports.resume;
+            resume["shots_before"] = shots_before;
+            resume["shots_this_run"] = solver.shots() - shots_before;
+            resume["seconds_this_run"] = solver.seconds() - seconds_before;
+            resume["incremental"] = resume_edits.any();
+            resume["luminaires_changed"] = resume_edits.luminaires;
+            resume["polygons_changed"] = resume_edits.polygons;
+        }
+        write_report(report, solver, scene, grids, exports.lux, resumed ? &resume : nullptr);
         if (!quiet) std::fprintf(stderr, "hemirad: wrote %s (JSON report)\n", report.c_str());
     }
     if (!probes_out.empty()) {

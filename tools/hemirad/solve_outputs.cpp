@@ -36,9 +36,11 @@ void write_outputs(const OutputOptions& o, Solver& solver, bool quiet) {
 }
 
 void write_report(const std::string& path, Solver& solver, const Scene& scene,
-                  const std::vector<GridResult>& grids, bool lux) {
+                  const std::vector<GridResult>& grids, bool lux, const Json* resume) {
     (void)scene;
-    write_text_file(path, solve_report(solver, grids, lux).dump() + "\n");
+    Json j = solve_report(solver, grids, lux);
+    if (resume) j["resume"] = *resume;
+    write_text_file(path, j.dump() + "\n");
 }
 
 } // namespace hemirad::cli

@@ -20,8 +20,11 @@ void add_output_options(ArgParser& args, OutputOptions& o);
 void validate_output_options(const OutputOptions& o);
 void write_outputs(const OutputOptions& o, Solver& solver, bool quiet);
 
+/// The JSON report; `resume`, unless null, goes in as its "resume" key (hemirad solve --resume:
+/// file, shots_before, shots_this_run, incremental, luminaires_changed, polygons_changed).
 void write_report(const std::string& path, Solver& solver, const Scene& scene,
-                  const std::vector<GridResult>& grids = {}, bool lux = false);
+                  const std::vector<GridResult>& grids = {}, bool lux = false,
+                  const Json* resume = nullptr);
 
 /// SIGINT/SIGTERM set a flag: the solve finishes its shot, writes its outputs, exits non-zero.
 void install_interrupt_handler();
