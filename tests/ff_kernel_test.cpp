@@ -268,5 +268,29 @@ TEST(Sum, SmallAngleAccuracy) {
     EXPECT_NEAR(f / (s * s / (kPi * d * d)), 1.0, 1e-9);
 }
 
+// ClusterShooter::share_in_front: a cluster of two slabs facing away from each other (lobe +x,
+// its polygons at x >= 0.5; lobe -x, at x <= -0.5), weights 1/2 each. A point beyond a slab
+// takes all the light sent towards it; a point between the slabs (inside the object, or
+// behind the wall a lobe's polygons cover) none; towards a point along y no lobe emits.
+TEST(ClusterLobes, ShareInFrontOfTheLobesPlanes) {
+    ClusterShooter c;
+    c.normals = {{1, 0, 0}, {-1, 0, 0}};
+    c.weights = {0.5, 0.5};
+    c.offsets = {0.5, 0.5};
+    EXPECT_DOUBLE_EQ(c.share_in_front({2, 0, 0}, 1e-9), 1.0);
+    EXPECT_DOUBLE_EQ(c.share_in_front({2, 2, 0}, 1e-9), 1.0);
+    EXPECT_DOUBLE_EQ(c.share_in_front({-3, 1, 0}, 1e-9), 1.0);
+    EXPECT_DOUBLE_EQ(c.share_in_front({0.2, 0, 0}, 1e-9), 0.0) << "between the slabs";
+    EXPECT_DOUBLE_EQ(c.share_in_front({0.5, 0.1, 0}, 1e-9), 0.0) << "in the +x lobe's plane";
+    EXPECT_DOUBLE_EQ(c.share_in_front({0, 2, 0}, 1e-9), 0.0) << "no lobe emits along y";
+    // Lobes +x and +y (weights 1/2): at (1, 1) the +x lobe's plane is passed, the +y lobe's
+    // (its polygons at y >= 3) not: the +x lobe's half of the intensity there.
+    c.normals = {{1, 0, 0}, {0, 1, 0}};
+    c.offsets = {0.5, 3.0};
+    EXPECT_NEAR(c.share_in_front({1, 1, 0}, 1e-9), 0.5, 1e-12);
+    c.offsets.clear();
+    EXPECT_DOUBLE_EQ(c.share_in_front({0.2, 0, 0}, 1e-9), 1.0) << "no planes: all";
+}
+
 } // namespace
 } // namespace hemirad

@@ -34,8 +34,8 @@ struct ClusterShooter {
     std::vector<dvec3> normals;  ///< emission lobes (unit normals)...
     std::vector<double> weights; ///< ...and their shares of the power (sum 1)...
     /// ...and per lobe the plane its polygons lie in front of: min over them of normal . corner.
-    /// A receiver behind every lobe's plane (inside the object the cluster wraps, or behind
-    /// the wall it covers) gets none of its light.
+    /// A lobe lights only receivers in front of its plane (share_in_front): one behind it is
+    /// inside the object the cluster wraps, or behind the wall it covers.
     std::vector<double> offsets;
     /// Its polygons, sorted: not drawn (they do not occlude its light), never linked.
     std::vector<std::uint32_t> members;
@@ -50,6 +50,9 @@ struct ClusterShooter {
     double intensity(const dvec3& d) const;
     /// Share of the power emitted into the half space d . axis < 0.
     double back_share() const;
+    /// Of the intensity towards point x, the share from lobes whose plane x is in front of
+    /// (by more than eps); 1 without offsets, 0 where no lobe emits towards x.
+    double share_in_front(const dvec3& x, double eps) const;
 };
 
 /// One receiving node and the form factor from it to the shooter, F(j -> S): the fraction

@@ -89,6 +89,20 @@ double ClusterShooter::intensity(const dvec3& d) const {
     return i / std::numbers::pi;
 }
 
+double ClusterShooter::share_in_front(const dvec3& x, double eps) const {
+    if (offsets.empty()) return 1.0;
+    const dvec3 d = x - centre;
+    const double len = glm::length(d);
+    if (!(len > 0)) return 0.0;
+    double all = 0, front = 0;
+    for (std::size_t k = 0; k < normals.size(); ++k) {
+        const double i = weights[k] * std::max(0.0, glm::dot(normals[k], d) / len);
+        all += i;
+        if (glm::dot(normals[k], x) > offsets[k] + eps) front += i;
+    }
+    return all > 0 ? front / all : 0.0;
+}
+
 double ClusterShooter::back_share() const {
     // A cosine lobe about n puts the share (1 - n.a)/2 of its power... exactly: the power of
     // max(0, n.d)/pi over the half space d.a < 0 is (1 - n.a)/2 (the projected solid angle

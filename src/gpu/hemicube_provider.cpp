@@ -233,19 +233,23 @@ class HemicubeProvider final : public FormFactorProvider {
         // How wrong a point is as a stand-in for the cluster: the light received, weighted by
         // (R / r)^2 (the relative error of a point's kernel at distance r from a cluster of
         // radius R, capped at 1), over the light received.
-        // A receiver behind every lobe's plane is inside the object the cluster wraps (or
-        // behind the wall it covers): the point, not the cluster's surfaces, sees it.
+        // Each lobe lights only what lies in front of its plane: a receiver behind it is
+        // inside the object the cluster wraps, or behind the wall it covers (the twin of a
+        // lit wall, facing into the slab), which the point sees and the lobe's polygons do
+        // not. A link keeps the share of the intensity towards it of the lobes it is in front
+        // of.
         double near = 0, total = 0;
         const double R2 = c.radius * c.radius;
         const double eps = 1e-6 * std::max(c.radius, 1e-300);
         std::size_t kept = 0;
-        for (const Link& l : links) {
+        for (Link l : links) {
             const Polygon& poly = scene_->polygons[l.receiver.polygon];
             const PatchGeometry g = patch_geometry(poly, l.receiver.level, l.receiver.index);
-            bool in_front = c.offsets.empty();
-            for (std::size_t k = 0; k < c.offsets.size() && !in_front; ++k)
-                in_front = glm::dot(c.normals[k], g.centre) > c.offsets[k] + eps;
-            if (!in_front) continue;
+            const float share = float(c.share_in_front(g.centre, eps));
+            if (!(share > 0)) continue;
+            l.ff *= share;
+            l.ff_analytic *= share;
+            l.ff_pixel *= share;
             links[kept++] = l;
             const double w = double(l.ff) * g.area;
             total += w;
