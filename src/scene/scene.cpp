@@ -173,7 +173,8 @@ void finish_scene(Scene& s, const std::string& origin) {
     if (s.polygons.empty())
         throw InputError(origin, 0, "the scene has no polygons (nothing to solve)");
     const dvec3 power = s.emitted_power();
-    if (!(power.x > 0 || power.y > 0 || power.z > 0))
+    const bool sunlit = s.sun && s.sun->normal_irradiance() > 0;
+    if (!(power.x > 0 || power.y > 0 || power.z > 0) && !sunlit)
         s.warnings.push_back(s.luminaires.empty()
                                  ? std::string(kNoEmitterWarning) +
                                        " (every Ke is 0): the solution will be black"
@@ -280,6 +281,11 @@ std::uint64_t Scene::content_hash() const {
         mix(d.c.data(), d.c.size() * sizeof(double));
         mix(d.candela.data(), d.candela.size() * sizeof(double));
         mix(&d.symmetry, sizeof d.symmetry);
+    }
+    if (sun) { // none: the hash is what it always was
+        mix(&sun->direction, sizeof(dvec3));
+        const double e = sun->normal_irradiance();
+        mix(&e, sizeof e);
     }
     return h;
 }
