@@ -108,6 +108,8 @@ TEST(SolarPosition, NoonAltitudeAndAzimuth) {
     EXPECT_NEAR(rise.azimuth_deg, 90, 0.5);
     EXPECT_THROW(solar_position(0, 0, 2027, 2, 29, 12, 0), InputError); // not a leap year
     EXPECT_THROW(solar_position(0, 0, 2027, 13, 1, 12, 0), InputError);
+    EXPECT_THROW(solar_position(0, 0, 2147483647, 1, 1, 12, 0), InputError); // no overflow
+    EXPECT_NO_THROW(solar_position(0, 0, 2028, 2, 29, 12, 0));
 }
 
 TEST(SunSceneJson, DirectionAndAngles) {

@@ -52,7 +52,8 @@ struct SolarPosition {
 /// NOAA's Solar Calculator algorithm (Meeus, Astronomical Algorithms, ch. 25, low accuracy:
 /// the declination and the equation of time from the sun's apparent longitude), about 0.01
 /// degrees from 1900 to 2100; no refraction.
-/// Throws InputError for a date or time out of range (month 1..12, day 1..31, hour 0..24).
+/// Throws InputError for a date or time out of range (year 1..9999, month 1..12, day 1..31,
+/// hour 0..24).
 HEMIRAD_API SolarPosition solar_position(double latitude_deg, double longitude_deg, int year,
                                          int month, int day, double hours_local,
                                          double utc_offset_hours);

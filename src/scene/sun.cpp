@@ -48,6 +48,8 @@ void SkyFrame::angles(const glm::dvec3& d, double& altitude_deg, double& azimuth
 SolarPosition solar_position(double latitude_deg, double longitude_deg, int year, int month,
                              int day, double hours_local, double utc_offset_hours) {
     static constexpr int kDays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+    if (year < 1 || year > 9999)
+        throw InputError("year " + std::to_string(year) + " must be in 1..9999");
     if (month < 1 || month > 12)
         throw InputError("month " + std::to_string(month) + " must be in 1..12");
     const int days_in_month = kDays[month - 1] + (month == 2 && leap(year) ? 1 : 0);
