@@ -430,9 +430,12 @@ Sun read_sun(const Reader& r, const json& j, const SkyFrame& frame,
         }
         sun.direction = frame.direction(sun.altitude_deg, sun.azimuth_deg);
     }
-    if (!(sun.altitude_deg > 0))
-        warnings.push_back("the sun is at or below the horizon (altitude " + num(sun.altitude_deg) +
+    if (!(sun.altitude_deg > 0)) {
+        char altitude[32];
+        std::snprintf(altitude, sizeof altitude, "%.2f", sun.altitude_deg);
+        warnings.push_back(std::string("the sun is at or below the horizon (altitude ") + altitude +
                            " degrees): it lights nothing");
+    }
     return sun;
 }
 
