@@ -99,7 +99,7 @@ class HEMIRAD_API FinalGather {
     dvec3 reflected(const dvec3& origin, const dvec3& dir, std::uint32_t self, Rng& rng,
                     bool near_path) const;
     dvec3 direct_sample(const dvec3& y, const dvec3& n, std::uint32_t self, Rng& rng) const;
-    /// The luminaires' direct irradiance at x (one shadow ray each), RGB.
+    /// The luminaires' and the sun's direct irradiance at x (one shadow ray each), RGB.
     dvec3 luminaires(const dvec3& x, const dvec3& n, std::uint32_t self) const;
 
     const Hierarchy* h_;

@@ -59,6 +59,7 @@
 #include "hemirad/solution_file.h"
 #include "hemirad/solver.h"
 #include "hemirad/solver_options.h"
+#include "hemirad/sun.h"
 #include "hemirad/texture.h"
 #include "hemirad/validation_scenes.h"
 #include "hemirad/version.h"

@@ -7,12 +7,14 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "hemirad/photometry.h"
+#include "hemirad/sun.h"
 #include "hemirad/texture.h"
 #include "hemirad/visibility.h"
 
@@ -84,6 +86,10 @@ struct HEMIRAD_API Scene {
     /// Point-source luminaires (photometry.h; from a SCENE.json file): shot by the solver like
     /// emitting polygons, their direct light gathered exactly at points.
     std::vector<Luminaire> luminaires;
+    /// The sun (sun.h; SCENE.json "sun"), a parallel source: its direct light is delivered to
+    /// every leaf patch before the first shot (solver/sun_light.h) and gathered exactly at
+    /// points. Not in emitted_power(): what it delivers depends on the geometry.
+    std::optional<Sun> sun;
     std::vector<std::string> warnings; ///< things the loader fixed or dropped, for reports
     /// Reflectance textures (Material::texture); empty in an untextured scene.
     std::vector<Texture> textures;

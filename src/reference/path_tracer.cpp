@@ -37,7 +37,8 @@
 //
 // Point luminaires (photometry.h) are delta lights: at every vertex each adds
 // I(w) cos(theta_x) / (683 r^2) when the segment to it is unoccluded (next-event estimation
-// only; no cosine ray can hit a point).
+// only; no cosine ray can hit a point). The sun (sun.h) is a delta directional light: at every
+// vertex it adds E_n/683 max(0, n.s) when the ray from x along s leaves the scene unblocked.
 //
 // A sample of E(x) is then sum over vertices k of beta_k * (the I_e terms at vertex k).
 // max_bounces = m > 0 stops the path after m reflections (light reflected at most m times).
@@ -163,7 +164,20 @@ class PathTracer {
             const double el = l.irradiance(x, n);
             if (el > 0 && !bvh_.occluded(x, l.position, ignore, kNoPolygon)) e += el;
         }
-        return dvec3(e);
+        return dvec3(e + sun(x, n, ignore));
+    }
+
+    /// The sun, a delta directional light: E_n/683 (n.s) if the ray x + t s (t > 0) meets
+    /// nothing.
+    double sun(const dvec3& x, const dvec3& n, std::uint32_t ignore) const {
+        if (!scene_.sun || !(scene_.sun->illuminance > 0) || !(scene_.sun->altitude_deg > 0))
+            return 0;
+        const dvec3 s = scene_.sun->direction;
+        const double cos_x = glm::dot(n, s);
+        if (!(cos_x > 0)) return 0;
+        Hit hit;
+        if (bvh_.intersect(x, s, std::numeric_limits<double>::infinity(), hit, ignore)) return 0;
+        return scene_.sun->illuminance / kLumensPerWatt * cos_x;
     }
 
     dvec3 light_sample(const dvec3& x, const dvec3& n, std::uint32_t ignore, std::uint32_t e,

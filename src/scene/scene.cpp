@@ -173,7 +173,8 @@ void finish_scene(Scene& s, const std::string& origin) {
     if (s.polygons.empty())
         throw InputError(origin, 0, "the scene has no polygons (nothing to solve)");
     const dvec3 power = s.emitted_power();
-    if (!(power.x > 0 || power.y > 0 || power.z > 0))
+    const bool sunlit = s.sun && s.sun->normal_irradiance() > 0;
+    if (!(power.x > 0 || power.y > 0 || power.z > 0) && !sunlit)
         s.warnings.push_back(s.luminaires.empty()
                                  ? std::string(kNoEmitterWarning) +
                                        " (every Ke is 0): the solution will be black"
@@ -263,6 +264,15 @@ void mix_textures(Fnv1a& mix, const Scene& s) {
     }
 }
 
+/// The sun's direction and normal illuminance (none: nothing, so a scene without a sun hashes
+/// as it always did).
+void mix_sun(Fnv1a& mix, const std::optional<Sun>& sun) {
+    if (!sun) return;
+    mix(&sun->direction, sizeof(dvec3));
+    const double e = sun->normal_irradiance();
+    mix(&e, sizeof e);
+}
+
 /// A luminaire's placement and distribution; its multiplier when `multiplier`.
 void mix_luminaire(Fnv1a& mix, const Luminaire& l, bool multiplier) {
     for (const dvec3* v : {&l.position, &l.aim, &l.c0}) mix(v, sizeof(dvec3));
@@ -297,6 +307,7 @@ std::uint64_t Scene::content_hash() const {
     // Luminaires change the solution: their placement and distribution count (none: the hash
     // of a scene without luminaires is what it always was).
     for (const Luminaire& l : luminaires) mix_luminaire(mix, l, true);
+    mix_sun(mix, sun);
     return mix.h;
 }
 
@@ -315,6 +326,9 @@ std::uint64_t Scene::geometry_hash() const {
         mix(l.name.data(), l.name.size() + 1);
         mix_luminaire(mix, l, false);
     }
+    // The sun: incremental re-solving does not edit it, so a solution of another sun is of
+    // another scene.
+    mix_sun(mix, sun);
     return mix.h;
 }
 

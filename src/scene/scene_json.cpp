@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -324,6 +325,121 @@ Camera read_camera(const Reader& r, const json& j, const std::string& at, std::s
     return c;
 }
 
+// "up" and "north" (top level): unit, north made perpendicular to up.
+SkyFrame read_sky_frame(const Reader& r, const json& doc) {
+    SkyFrame f;
+    if (doc.contains("up")) f.up = r.vec3(doc["up"], "/up");
+    if (doc.contains("north")) f.north = r.vec3(doc["north"], "/north");
+    if (!(glm::length(f.up) > 0)) r.fail("/up", "must be a non-zero direction");
+    f.up = glm::normalize(f.up);
+    const dvec3 level = f.north - glm::dot(f.north, f.up) * f.up;
+    if (!(glm::length(level) > 1e-6 * glm::length(f.north)))
+        r.fail("/north", "must be a non-zero direction not parallel to 'up'");
+    f.north = glm::normalize(level);
+    return f;
+}
+
+// "HH:MM" or "HH:MM:SS" -> hours; "YYYY-MM-DD" -> year, month, day.
+bool parse_time(const std::string& s, double& hours) {
+    int h = 0, m = 0, n = 0;
+    double sec = 0;
+    if (std::sscanf(s.c_str(), "%d:%d%n", &h, &m, &n) != 2) return false;
+    if (s[std::size_t(n)] == ':') {
+        int n2 = 0;
+        if (std::sscanf(s.c_str() + n, ":%lf%n", &sec, &n2) != 1) return false;
+        n += n2;
+    }
+    if (std::size_t(n) != s.size() || m < 0 || m > 59 || !(sec >= 0 && sec < 60)) return false;
+    hours = h + m / 60.0 + sec / 3600.0;
+    return h >= 0 && hours <= 24;
+}
+bool parse_date(const std::string& s, int& year, int& month, int& day) {
+    int n = 0;
+    return std::sscanf(s.c_str(), "%d-%d-%d%n", &year, &month, &day, &n) == 3 &&
+           std::size_t(n) == s.size();
+}
+
+// "sun": one of "direction", "altitude" + "azimuth", or "latitude" + "longitude" + "date" +
+// "time" (+ "utc_offset"), and "illuminance" (sun.h).
+Sun read_sun(const Reader& r, const json& j, const SkyFrame& frame,
+             std::vector<std::string>& warnings) {
+    const std::string at = "/sun";
+    r.only_keys(j, at,
+                {"direction", "altitude", "azimuth", "latitude", "longitude", "date", "time",
+                 "utc_offset", "illuminance"});
+    const bool by_direction = j.contains("direction");
+    const bool by_angles = j.contains("altitude") || j.contains("azimuth");
+    const bool by_place = j.contains("latitude") || j.contains("longitude") || j.contains("date") ||
+                          j.contains("time") || j.contains("utc_offset");
+    if (int(by_direction) + int(by_angles) + int(by_place) != 1)
+        r.fail(at, "the sun is given by one of 'direction'; 'altitude' and 'azimuth'; or "
+                   "'latitude', 'longitude', 'date', 'time' (and 'utc_offset'), not " +
+                       std::string(by_direction || by_angles || by_place ? "several" : "none"));
+    if (!j.contains("illuminance"))
+        r.fail(at, "the sun needs 'illuminance': its normal illuminance E_n [lux], e.g. 80000");
+    Sun sun;
+    sun.illuminance = r.number(j["illuminance"], at + "/illuminance");
+    if (!(sun.illuminance >= 0))
+        r.fail(at + "/illuminance", "must be >= 0 lux, got " + Reader::dump(j["illuminance"]));
+    if (by_direction) {
+        const dvec3 d = r.vec3(j["direction"], at + "/direction");
+        if (!(glm::length(d) > 0)) r.fail(at + "/direction", "must be a non-zero direction");
+        sun.direction = glm::normalize(d);
+        frame.angles(sun.direction, sun.altitude_deg, sun.azimuth_deg);
+    } else {
+        if (by_angles) {
+            if (!j.contains("altitude") || !j.contains("azimuth"))
+                r.fail(at, "the sun needs both 'altitude' and 'azimuth' [degrees]");
+            sun.altitude_deg = r.number(j["altitude"], at + "/altitude");
+            sun.azimuth_deg = r.number(j["azimuth"], at + "/azimuth");
+            if (!(sun.altitude_deg >= -90 && sun.altitude_deg <= 90))
+                r.fail(at + "/altitude",
+                       "must be in [-90, 90] degrees, got " + Reader::dump(j["altitude"]));
+        } else {
+            for (const char* k : {"latitude", "longitude", "date", "time"})
+                if (!j.contains(k))
+                    r.fail(at, std::string("the sun by place and time needs '") + k +
+                                   "' (latitude, longitude [degrees, north and east positive], "
+                                   "date \"YYYY-MM-DD\", time \"HH:MM\", utc_offset [h])");
+            const double lat = r.number(j["latitude"], at + "/latitude");
+            const double lon = r.number(j["longitude"], at + "/longitude");
+            if (!(lat >= -90 && lat <= 90))
+                r.fail(at + "/latitude",
+                       "must be in [-90, 90], got " + Reader::dump(j["latitude"]));
+            if (!(lon >= -180 && lon <= 360))
+                r.fail(at + "/longitude",
+                       "must be in [-180, 360], got " + Reader::dump(j["longitude"]));
+            const double offset =
+                j.contains("utc_offset") ? r.number(j["utc_offset"], at + "/utc_offset") : 0;
+            if (!(offset >= -14 && offset <= 14))
+                r.fail(at + "/utc_offset",
+                       "must be in [-14, 14] hours, got " + Reader::dump(j["utc_offset"]));
+            int year = 0, month = 0, day = 0;
+            double hours = 0;
+            if (!parse_date(r.string(j["date"], at + "/date"), year, month, day))
+                r.fail(at + "/date", "expected \"YYYY-MM-DD\", got " + Reader::dump(j["date"]));
+            if (!parse_time(r.string(j["time"], at + "/time"), hours))
+                r.fail(at + "/time", "expected \"HH:MM\" or \"HH:MM:SS\" (local clock time), got " +
+                                         Reader::dump(j["time"]));
+            try {
+                const SolarPosition p = solar_position(lat, lon, year, month, day, hours, offset);
+                sun.altitude_deg = p.altitude_deg;
+                sun.azimuth_deg = p.azimuth_deg;
+            } catch (const InputError& e) {
+                r.fail(at + "/date", e.what());
+            }
+        }
+        sun.direction = frame.direction(sun.altitude_deg, sun.azimuth_deg);
+    }
+    if (!(sun.altitude_deg > 0)) {
+        char altitude[32];
+        std::snprintf(altitude, sizeof altitude, "%.2f", sun.altitude_deg);
+        warnings.push_back(std::string("the sun is at or below the horizon (altitude ") + altitude +
+                           " degrees): it lights nothing");
+    }
+    return sun;
+}
+
 } // namespace
 
 bool is_scene_json(const std::string& path) {
@@ -350,7 +466,7 @@ Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
     KeyLines locator(text);
     json::sax_parse(text, &locator);
     const Reader r(path, locator.lines);
-    r.only_keys(doc, "", {"include", "luminaires", "cameras", "two_sided"});
+    r.only_keys(doc, "", {"include", "luminaires", "cameras", "two_sided", "sun", "up", "north"});
 
     Scene scene;
     scene.source = path;
@@ -401,6 +517,8 @@ Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
             scene.luminaires.push_back(
                 read_luminaire(r, ls[k], "/luminaires/" + std::to_string(k), k, scene.warnings));
     }
+    const SkyFrame frame = read_sky_frame(r, doc);
+    if (doc.contains("sun")) scene.sun = read_sun(r, doc["sun"], frame, scene.warnings);
     if (doc.contains("cameras")) {
         const json& cs = doc["cameras"];
         if (!cs.is_array()) r.fail("/cameras", "expected a list of cameras [{...}, ...]");

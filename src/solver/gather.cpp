@@ -10,6 +10,7 @@
 #include "hemirad/error.h"
 #include "hemirad/form_factors.h"
 #include "hemirad/readout.h"
+#include "solver/sun_light.h"
 
 namespace hemirad {
 
@@ -100,13 +101,14 @@ dvec3 FinalGather::direct(const dvec3& x, const dvec3& n, std::uint32_t self,
     return E + luminaires(x, n, self);
 }
 
+// Point luminaires and the sun: delta lights, one shadow ray each.
 dvec3 FinalGather::luminaires(const dvec3& x, const dvec3& n, std::uint32_t self) const {
     double e = 0;
     for (const Luminaire& l : h_->scene().luminaires) {
         const double el = l.irradiance(x, n);
         if (el > 0 && !bvh_->occluded(x, l.position, self, kNoPolygon)) e += el;
     }
-    return dvec3(e);
+    return dvec3(e) + sun_irradiance(h_->scene(), *bvh_, x, n, self, offset_);
 }
 
 dvec3 FinalGather::direct_sample(const dvec3& y, const dvec3& n, std::uint32_t self,

@@ -12,6 +12,7 @@
 #include "solver/cluster_tree.h"
 #include "solver/plane_cuts.h"
 #include "solver/solver_detail.h"
+#include "solver/sun_light.h"
 
 namespace hemirad {
 
@@ -110,6 +111,11 @@ void Solver::init() {
     peak_emitted_ = emitted_;
     luminaire_unshot_.clear();
     for (const Luminaire& l : scene_->luminaires) luminaire_unshot_.push_back(dvec3(l.power()));
+    // The sun's direct light, once, before the first shot (sun_light.h): what it delivers is
+    // emitted power, its reflected part the leaves' unshot power.
+    const SunDelivery sun = deliver_sunlight(*scene_, hierarchy_);
+    emitted_ += sun.power;
+    absorbed_ += sun.absorbed;
     rho_max_ = scene_->max_reflectance();
     // Default minimum shooter size: the size of the smallest leaf patches' polygons' leaves.
     max_size_ = options_.shooter_max_size > 0 ? options_.shooter_max_size : 1e300;

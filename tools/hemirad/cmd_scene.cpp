@@ -1,4 +1,5 @@
 // hemirad scene: what was loaded.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -115,6 +116,14 @@ int cmd_scene(int argc, char** argv) {
         Json sched = luminaire_schedule(scene);
         j["installed_lumens"] = sched["installed_lumens"];
         j["luminaires"] = sched["luminaires"];
+        if (scene.sun) {
+            Json o = Json::object();
+            o["direction"] = scene.sun->direction;
+            o["altitude"] = scene.sun->altitude_deg;
+            o["azimuth"] = scene.sun->azimuth_deg;
+            o["illuminance"] = scene.sun->illuminance;
+            j["sun"] = o;
+        }
         Json cams = Json::array();
         for (const Camera& c : scene.cameras) cams.push_back(c.name);
         j["cameras"] = cams;
@@ -152,6 +161,15 @@ int cmd_scene(int argc, char** argv) {
                         l.name.c_str(), l.kind.c_str(), l.lumens(), l.position.x, l.position.y,
                         l.position.z, l.multiplier * l.distribution.max_candela(),
                         l.file.empty() ? "" : "  ", l.file.c_str());
+    }
+    if (scene.sun) {
+        const Sun& s = *scene.sun;
+        const auto c = [](double x) { return std::abs(x) < 5e-5 ? 0.0 : x; }; // no "-0.0000"
+        std::printf("sun        towards (%.4f, %.4f, %.4f), altitude %.2f deg, azimuth %.2f deg "
+                    "(from north, clockwise), E_n %.6g lx%s\n",
+                    c(s.direction.x), c(s.direction.y), c(s.direction.z), s.altitude_deg,
+                    s.azimuth_deg, s.illuminance,
+                    s.normal_irradiance() > 0 ? "" : " (below the horizon: dark)");
     }
     return 0;
 }

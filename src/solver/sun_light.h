@@ -1,0 +1,35 @@
+// The sun's direct light on surfaces (Scene::sun, sun.h): delivered to every leaf patch before
+// the first shot, like a luminaire's first shot, and gathered exactly at read-out points.
+// Internal header.
+#pragma once
+
+#include <cstdint>
+
+#include "hemirad/hierarchy.h"
+#include "hemirad/scene.h"
+
+namespace hemirad {
+
+class Bvh;
+
+/// What deliver_sunlight() delivered, per RGB channel [W].
+struct SunDelivery {
+    dvec3 power{0.0};    ///< sum over leaves of E * A: the sun's emitted power for the scene
+    dvec3 absorbed{0.0}; ///< sum of (1 - rho) E A; the rest, rho E A, is the leaves' unshot power
+    std::uint64_t rays = 0; ///< shadow rays cast
+};
+
+/// Delivers the sun's direct irradiance E = E_n/683 max(0, n.s) V to every leaf patch
+/// (Hierarchy::receive), V the fraction of the leaf that sees the sun: shadow rays along s
+/// from the centres of a 4 x 4 grid of equal cells over the leaf, and of an 8 x 8 grid where
+/// some of those 16 are shadowed and some not (a shadow's edge crosses the leaf). Nothing for
+/// a scene without a sun, or with one at or below the horizon. threads: 0 = one per core.
+SunDelivery deliver_sunlight(const Scene& scene, Hierarchy& hierarchy, int threads = 0);
+
+/// The sun's direct irradiance at point x with unit normal n on polygon `self` (kNoPolygon off
+/// the surfaces), one shadow ray along s from x + offset n: E_n/683 max(0, n.s) or 0 in
+/// shadow [W unit^-2], equal RGB. 0 without a sun.
+dvec3 sun_irradiance(const Scene& scene, const Bvh& bvh, const dvec3& x, const dvec3& n,
+                     std::uint32_t self, double offset);
+
+} // namespace hemirad
