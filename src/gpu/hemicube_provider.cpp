@@ -300,7 +300,7 @@ class HemicubeProvider final : public FormFactorProvider {
             t_read += since(t0);
             t0 = Clock::now();
             const gpu::HemicubeFrame frame = gpu::hemicube_frame(sides[k]);
-            cracks_ += gpu::fill_cracks(*scene_, layout, frame, buffers[k]->data(), s.centre);
+            gpu::fill_cracks(*scene_, layout, frame, buffers[k]->data(), s.centre);
             const double d2 = 4.0 / (double(layout.res) * layout.res); // pixel area at 1
             const std::vector<float>& px = *buffers[k];
             for (int f = 0; f < 5; ++f) {
@@ -462,8 +462,7 @@ class HemicubeProvider final : public FormFactorProvider {
                 std::vector<Link>& links) {
         touched_.clear();
         const gpu::HemicubeFrame frame = gpu::hemicube_frame(shooter);
-        cracks_ +=
-            gpu::fill_cracks(*scene_, layout, frame, pixels_.data(), shooter.geometry.centre);
+        gpu::fill_cracks(*scene_, layout, frame, pixels_.data(), shooter.geometry.centre);
         double backface = 0;
         const std::size_t n = std::size_t(layout.width) * layout.height;
         for (std::size_t i = 0; i < n; ++i) {
@@ -731,8 +730,7 @@ class HemicubeProvider final : public FormFactorProvider {
     std::uint32_t stamp_ = 0;
     double max_power_ = 0;
     double backface_ = 0;
-    double plane_eps_ = 0;   ///< in a plane: within this distance of it [scene units]
-    std::size_t cracks_ = 0; ///< pixels filled by gpu::fill_cracks, all shots
+    double plane_eps_ = 0; ///< in a plane: within this distance of it [scene units]
     const gpu::HemicubeLayout* last_layout_ = nullptr; ///< of the last shoot() (in layouts_)
     Shooter last_shooter_;
     int last_width_ = 0, last_height_ = 0; ///< layout of pixels_ (last_hemicube())

@@ -35,10 +35,20 @@ bool within(const Polygon& q, const dvec3& p, double tol) {
     return true;
 }
 
+// The polygon pixel `at` of a hemicube image shows (front or back), or -1 for nothing.
 long shown_polygon(const float* rgba, std::size_t at) {
     const float id = rgba[4 * at + 2];
     if (id > -0.5f && id < 0.5f) return -1;
     return long(std::lround(std::abs(id))) - 1;
+}
+
+// Direction (not normalised) through the centre of pixel (i, j) of face f.
+dvec3 pixel_ray(const HemicubeLayout& L, const HemicubeFrame& frame, int f, int i, int j) {
+    const double d = 2.0 / L.res; // pixel side at unit distance along the face axis
+    const double x = -1 + (i + 0.5) * d;
+    const double y = f == 0 ? -1 + (j + 0.5) * d : (j + 0.5) * d;
+    const dvec3 screen_x = glm::cross(frame.dir[f], frame.up[f]);
+    return frame.dir[f] + x * screen_x + y * frame.up[f];
 }
 
 } // namespace
@@ -49,7 +59,6 @@ std::size_t fill_cracks(const Scene& scene, const HemicubeLayout& L, const Hemic
     const double pixel = 2.0 / L.res; // pixel side at unit distance along the face axis
     for (int f = 0; f < 5; ++f) {
         const HemicubeLayout::Face& face = L.faces[f];
-        const dvec3 screen_x = glm::cross(frame.dir[f], frame.up[f]);
         const auto at = [&](int i, int j) {
             return std::size_t(face.y + j) * std::size_t(L.width) + std::size_t(face.x + i);
         };
@@ -60,16 +69,13 @@ std::size_t fill_cracks(const Scene& scene, const HemicubeLayout& L, const Hemic
         const auto fill = [&](std::size_t a, int i, int j, std::size_t b) {
             const long p = shown_polygon(rgba, a), q = shown_polygon(rgba, b);
             if (p < 0 || q < 0 || p == q) return;
-            const double sx = -1 + (i + 0.5) * pixel;
-            const double sy = f == 0 ? -1 + (j + 0.5) * pixel : (j + 0.5) * pixel;
-            const dvec3 u = frame.dir[f] + sx * screen_x + sy * frame.up[f];
+            const dvec3 u = pixel_ray(L, frame, f, i, j);
             const Polygon& P = scene.polygons[std::size_t(p)];
             const double tp = plane_hit(P, eye, u);
             if (!(tp > 0)) return;
             const double tol = 0.01 * pixel * tp * glm::length(u);
-            dvec3 x = eye + tp * u, inward(0.0);
-            for (int c = 0; c < P.count; ++c) inward += P.v[c];
-            inward = inward / double(P.count) - x;
+            dvec3 x = eye + tp * u;
+            const dvec3 inward = P.centroid() - x;
             const double l = glm::length(inward);
             if (l > tol) x += inward * (tol / l);
             const dvec3 d = x - eye;
@@ -107,17 +113,11 @@ HemicubeVisibility::HemicubeVisibility(const Scene& scene, const HemicubeLayout&
     : scene_(&scene), layout_(&layout), frame_(frame), rgba_(rgba), eye_(eye) {}
 
 long HemicubeVisibility::shown(std::size_t at) const {
-    const float id = rgba_[4 * at + 2];
-    if (id > -0.5f && id < 0.5f) return -1;
-    return long(std::lround(std::abs(id))) - 1;
+    return shown_polygon(rgba_, at);
 }
 
 dvec3 HemicubeVisibility::ray(int f, int i, int j) const {
-    const double d = 2.0 / layout_->res;
-    const double x = -1 + (i + 0.5) * d;
-    const double y = f == 0 ? -1 + (j + 0.5) * d : (j + 0.5) * d;
-    const dvec3 screen_x = glm::cross(frame_.dir[f], frame_.up[f]);
-    return frame_.dir[f] + x * screen_x + y * frame_.up[f];
+    return pixel_ray(*layout_, frame_, f, i, j);
 }
 
 bool HemicubeVisibility::hides(int f, int i, int j, std::uint32_t p) const {

@@ -224,8 +224,9 @@ bool Solver::step() {
     double best = -1;
     bool negative = false; // an edit's negative power (incremental.cpp): no cluster shots
     for (std::uint32_t p = 0; p < scene_->polygons.size(); ++p) {
-        const double u = magnitude(hierarchy_.unshot_power(p));
-        negative = negative || has_negative(hierarchy_.unshot_power(p));
+        const auto unshot = hierarchy_.unshot_power(p);
+        const double u = magnitude(unshot);
+        negative = negative || has_negative(unshot);
         if (u > best) best = u, polygon = p;
     }
     // A luminaire competes with the polygons by its unshot power (all of it, until it shoots).
