@@ -46,6 +46,8 @@ py::dict shot_dict(const ShotRecord& r) {
     d["shooter_power"] = r.shooter_power;
     d["links"] = r.links;
     if (r.refined) d["refined"] = r.refined;
+    if (r.probes) d["probes"] = r.probes;
+    if (r.discarded) d["discarded"] = r.discarded;
     if (r.parallax >= 0) d["parallax"] = r.parallax;
     py::dict t;
     t["select"] = r.t_select;

@@ -92,6 +92,8 @@ struct ShotRecord {
     std::size_t links = 0;
     int refined = 0;          ///< shooters replaced by their children before this shot
                               ///< (enclosed centre, or parallax above the limit)
+    int probes = 0;           ///< coarse hemicubes rendered to decide whether a node may shoot
+    int discarded = 0;        ///< full hemicubes rendered for refused nodes and thrown away
     double parallax = -1;     ///< the shooter's parallax fraction (-1: not measured, a leaf)
     double row_sum = 0;       ///< sum_j F(j->S) A_j / A_S before any guard (1 if closed);
                               ///< for a luminaire, the fraction of its power received

@@ -6,6 +6,7 @@
 //   hybrid    analytic, except nodes with a fully occluded neighbour: pixel sum clamped to
 //             the analytic value
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include <functional>
 #include <optional>
 
+#include "core/parallel.h"
 #include "core/timer.h"
 #include "gpu/hemicube.h"
 #include "gpu/hemicube_visibility.h"
@@ -486,12 +488,18 @@ class HemicubeProvider final : public FormFactorProvider {
 
     // Nodes that a silhouette crosses (gpu::HemicubeVisibility::occlusion_edges): the
     // pixels where their polygon goes on behind something nearer border theirs.
+    // The faces are searched on threads of their own, the marks set after.
     void mark_partial(const gpu::HemicubeVisibility& vis, const float* rgba) {
-        vis.occlusion_edges([&](std::size_t i) {
-            const float* px = &rgba[4 * i];
-            partial_[node_id(std::uint32_t(px[2]) - 1, std::uint32_t(px[1]),
-                             std::uint32_t(px[0]))] = stamp_;
+        for (auto& m : edge_pixels_) m.clear();
+        parallel_for(5, 0, [&](std::size_t f) {
+            vis.occlusion_edges(int(f), [&](std::size_t i) { edge_pixels_[f].push_back(i); });
         });
+        for (const auto& m : edge_pixels_)
+            for (std::size_t i : m) {
+                const float* px = &rgba[4 * i];
+                partial_[node_id(std::uint32_t(px[2]) - 1, std::uint32_t(px[1]),
+                                 std::uint32_t(px[0]))] = stamp_;
+            }
     }
 
     // Is x (on polygon p) seen by the shooter, in the hemicube of its side (a point shot has
@@ -719,8 +727,9 @@ class HemicubeProvider final : public FormFactorProvider {
     const gpu::HemicubeVisibility* vis_[2] = {nullptr, nullptr};
     dvec3 sphere_centre_{0.0}, sphere_axis_{0.0};
     std::vector<std::uint32_t> partial_; ///< per node, stamp_: a silhouette crosses it
-    std::vector<dvec3> centre_;          ///< per polygon, its level-0 centre
-    const std::vector<std::uint32_t>* hidden_ = nullptr; ///< during shoot_cluster(): members
+    std::array<std::vector<std::size_t>, 5> edge_pixels_; ///< mark_partial: per face
+    std::vector<dvec3> centre_;                           ///< per polygon, its level-0 centre
+    const std::vector<std::uint32_t>* hidden_ = nullptr;  ///< during shoot_cluster(): members
     double near_fraction_ = 0;
     bool point_shot_ = false; ///< the last shot was shoot_sphere()'s
     std::vector<std::uint32_t> seen_, below_seen_, polygon_seen_;

@@ -1,7 +1,11 @@
 // Visibility read from a rendered hemicube's patch IDs (hemicube_visibility.h).
 #include "gpu/hemicube_visibility.h"
 
+#include <array>
 #include <cmath>
+#include <numeric>
+
+#include "core/parallel.h"
 
 namespace hemirad::gpu {
 
@@ -55,9 +59,13 @@ dvec3 pixel_ray(const HemicubeLayout& L, const HemicubeFrame& frame, int f, int 
 
 std::size_t fill_cracks(const Scene& scene, const HemicubeLayout& L, const HemicubeFrame& frame,
                         float* rgba, const dvec3& eye) {
-    std::size_t filled = 0;
     const double pixel = 2.0 / L.res; // pixel side at unit distance along the face axis
-    for (int f = 0; f < 5; ++f) {
+    // The faces are apart in the image and a pixel takes only its own face's values: each
+    // face on its own thread gives what one thread would.
+    std::array<std::size_t, 5> filled_in{};
+    parallel_for(5, 0, [&](std::size_t face_index) {
+        const int f = int(face_index);
+        std::size_t& filled = filled_in[face_index];
         const HemicubeLayout::Face& face = L.faces[f];
         const auto at = [&](int i, int j) {
             return std::size_t(face.y + j) * std::size_t(L.width) + std::size_t(face.x + i);
@@ -97,8 +105,8 @@ std::size_t fill_cracks(const Scene& scene, const HemicubeLayout& L, const Hemic
                     if (rgba[4 * a + 2] != rgba[4 * b + 2]) fill(a, i, j, b), fill(b, i, j + 1, a);
                 }
             }
-    }
-    return filled;
+    });
+    return std::accumulate(filled_in.begin(), filled_in.end(), std::size_t(0));
 }
 
 bool segment_crosses(const Polygon& q, const dvec3& from, const dvec3& d) {

@@ -50,7 +50,11 @@ class HemicubeVisibility {
     /// Calls mark(i) for every pixel i that shows the front of a polygon P next to a pixel
     /// (4-neighbour, same face) whose centre ray meets P (within P) behind what that pixel
     /// shows: P goes on behind an occluder there, so the node pixel i shows is partly hidden.
-    template <class Mark> void occlusion_edges(Mark mark) const;
+    template <class Mark> void occlusion_edges(Mark mark) const {
+        for (int f = 0; f < 5; ++f) occlusion_edges(f, mark);
+    }
+    /// The same on face f alone (faces may be taken on threads of their own).
+    template <class Mark> void occlusion_edges(int f, Mark mark) const;
 
   private:
     /// Direction (not normalised) through the centre of pixel (i, j) of face f.
@@ -68,9 +72,9 @@ class HemicubeVisibility {
     dvec3 eye_;
 };
 
-template <class Mark> void HemicubeVisibility::occlusion_edges(Mark mark) const {
+template <class Mark> void HemicubeVisibility::occlusion_edges(int f, Mark mark) const {
     const HemicubeLayout& L = *layout_;
-    for (int f = 0; f < 5; ++f) {
+    {
         const HemicubeLayout::Face& face = L.faces[f];
         const auto at = [&](int i, int j) {
             return std::size_t(face.y + j) * std::size_t(L.width) + std::size_t(face.x + i);

@@ -219,8 +219,8 @@ std::vector<Spec> experiments() {
 
 struct Sums {
     double select = 0, push_pull = 0, ff = 0, update = 0, render = 0, readback = 0, reduce = 0;
-    double cull = 0;
-    double links = 0;
+    double cull = 0, probe = 0;
+    double links = 0, refined = 0, probes = 0, discarded = 0;
 };
 
 using bench::luminance;
@@ -559,7 +559,12 @@ void run_child(const Spec& spec, const std::string& office) {
                 sum.readback += p.seconds;
             else if (!std::strcmp(p.phase, "reduce"))
                 sum.reduce += p.seconds;
+            else if (!std::strcmp(p.phase, "probe"))
+                sum.probe += p.seconds;
         }
+        sum.refined += r.refined;
+        sum.probes += r.probes;
+        sum.discarded += r.discarded;
         if (spec.overhead && r.luminaire < 0) {
             Shooter s;
             s.address = r.shooter;
@@ -622,6 +627,10 @@ void run_child(const Spec& spec, const std::string& office) {
     b["ff_render"] = sum.render;
     b["ff_readback"] = sum.readback;
     b["ff_reduce"] = sum.reduce;
+    b["ff_probe"] = sum.probe; // coarse hemicubes that decide whether a node may shoot
+    j["refined_per_shot"] = shots ? sum.refined / double(shots) : 0.0;
+    j["probes_per_shot"] = shots ? sum.probes / double(shots) : 0.0;
+    j["discarded_per_shot"] = shots ? sum.discarded / double(shots) : 0.0; // full hemicubes
     b["update"] = sum.update;
     j["breakdown"] = b;
     if (spec.paper_seconds > 0) {

@@ -49,6 +49,8 @@ Json shot_json(const ShotRecord& r) {
     j["shooter_power"] = r.shooter_power;
     j["links"] = r.links;
     if (r.refined) j["refined"] = r.refined;
+    if (r.probes) j["probes"] = r.probes;
+    if (r.discarded) j["discarded"] = r.discarded;
     if (r.parallax >= 0) j["parallax"] = r.parallax;
     Json t = Json::object();
     t["select"] = r.t_select;
