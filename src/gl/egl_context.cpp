@@ -6,6 +6,8 @@
 // (gladLoaderLoadEGL) and stays loaded for the life of the process.
 #include <cstdio>
 #include <cstring>
+#include <map>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -143,14 +145,19 @@ class EglContext final : public Context {
                 eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
             eglDestroyContext(display_, context_);
         }
-        // The display is shared by every context on it: one context per process (context.h).
-        eglTerminate(display_);
-        eglReleaseThread();
+        // The display is shared by every context on it (EGL gives one per native display):
+        // the last context on it terminates it, and only then is the thread's state released
+        // (another context may be current on it).
+        if (initialised_ && release_display(display_)) {
+            eglTerminate(display_);
+            eglReleaseThread();
+        }
     }
 
     std::string backend_name() const override { return "egl"; }
 
     void make_current() override {
+        if (eglGetCurrentContext() == context_) return;
         if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
             fail("eglMakeCurrent");
     }
@@ -158,8 +165,22 @@ class EglContext final : public Context {
   private:
     explicit EglContext(EGLDisplay display) : display_(display) {}
 
+    /// The contexts alive on each display: eglInitialize is counted, not nested, by EGL.
+    static void hold_display(EGLDisplay display) {
+        const std::lock_guard lock(displays_mutex_);
+        ++displays_[display];
+    }
+    /// One context fewer on `display`; true if it was the last.
+    static bool release_display(EGLDisplay display) {
+        const std::lock_guard lock(displays_mutex_);
+        return --displays_[display] == 0 && displays_.erase(display) > 0;
+    }
+
     EGLDisplay display_;
     EGLContext context_ = EGL_NO_CONTEXT;
+    bool initialised_ = false; ///< eglInitialize succeeded (hold_display counted it)
+    static inline std::mutex displays_mutex_;
+    static inline std::map<EGLDisplay, int> displays_;
 };
 
 std::unique_ptr<Context> EglContext::create(const ContextOptions& options, bool debug) {
@@ -169,6 +190,8 @@ std::unique_ptr<Context> EglContext::create(const ContextOptions& options, bool 
     if (!eglInitialize(display, &major, &minor)) fail("eglInitialize");
     // From here on the destructor cleans up whatever has been made.
     std::unique_ptr<EglContext> c(new EglContext(display));
+    hold_display(display);
+    c->initialised_ = true;
 
     // Again with the display: glad loads the display's version and extensions.
     if (gladLoaderLoadEGL(display) == 0)

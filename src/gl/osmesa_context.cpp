@@ -35,6 +35,7 @@ class OSMesaBackedContext final : public Context {
     std::string backend_name() const override { return "osmesa"; }
 
     void make_current() override {
+        if (OSMesaGetCurrentContext() == context_) return;
         if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, kSize, kSize))
             throw RuntimeError("OSMesaMakeCurrent failed");
     }

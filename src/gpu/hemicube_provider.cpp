@@ -75,6 +75,18 @@ class HemicubeProvider final : public FormFactorProvider {
         plane_eps_ = 1e-7 * scene.bounds().diagonal();
     }
 
+    // Its GL objects go with its own context current (another solver's may be).
+    ~HemicubeProvider() override {
+        try {
+            bind();
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "hemirad: GL context: %s\n", e.what());
+        }
+        renderer_.reset();
+    }
+    HemicubeProvider(const HemicubeProvider&) = delete;
+    HemicubeProvider& operator=(const HemicubeProvider&) = delete;
+
     std::string name() const override { return name_; }
     std::vector<Timing> last_timings() const override { return timings_; }
     double last_backface_fraction() const override { return backface_; }
@@ -107,6 +119,7 @@ class HemicubeProvider final : public FormFactorProvider {
     }
 
     void shoot(const Shooter& shooter, std::vector<Link>& links) override {
+        bind();
         links.clear();
         timings_.clear();
         if (probe_seconds_ > 0) timings_.push_back({"probe", probe_seconds_});
@@ -135,6 +148,7 @@ class HemicubeProvider final : public FormFactorProvider {
     // whether it may shoot. The parallax and near-surface measures are sums of form factor
     // over silhouettes and surfaces, nearly independent of the resolution.
     bool probe_view(const Shooter& shooter, ViewProbe& probe) override {
+        bind();
         if (resolution_for(shooter) <= kProbeResolution) return false;
         const gpu::HemicubeLayout& layout = layout_of(kProbeResolution);
         const auto t0 = Clock::now();
@@ -158,6 +172,7 @@ class HemicubeProvider final : public FormFactorProvider {
     // A luminaire shoots from its position over the whole sphere (shoot_sphere), with its
     // intensity in candela: per watt emitted, I(d) / (683 P).
     void shoot_point(const Luminaire& luminaire, std::vector<Link>& links) override {
+        bind();
         links.clear();
         timings_.clear();
         const double power = luminaire.power();
@@ -180,6 +195,7 @@ class HemicubeProvider final : public FormFactorProvider {
     // against the axis is left out when the cluster sends less than 0.1 % of its power there
     // (a flat cluster), and that light is added to the other side's (scaled: energy is kept).
     void shoot_cluster(const ClusterShooter& c, std::vector<Link>& links) override {
+        bind();
         links.clear();
         timings_.clear();
         if (c.rect.count > 0) {
@@ -712,6 +728,12 @@ class HemicubeProvider final : public FormFactorProvider {
     const Scene* scene_;
     Discretisation disc_;
     GpuProviderOptions options_;
+    /// A provider that owns its context makes it current before it draws: several solvers,
+    /// each with its own, may step in turn on one thread (the Python module's).
+    void bind() {
+        if (context_) context_->make_current();
+    }
+
     std::unique_ptr<gl::Context> context_;
     std::unique_ptr<gpu::HemicubeRenderer> renderer_;
     std::deque<gpu::HemicubeLayout> layouts_; // deque: references stay valid as it grows

@@ -53,6 +53,10 @@ for g in report["groups"]:
             assert math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12), (g["name"], key, a, b)
 assert s.report()["shots"] == report["shots"] == s.shots
 
+# A solver that steps on while others are made and destroyed, each on its own GL context.
+early = hemirad.Solver(scene, tolerance=0.02)
+assert early.solve(progress=lambda shot: shot["shot"] < 2) == "stopped"
+
 # The callback may stop the solve.
 s2 = hemirad.Solver(scene, tolerance=0.02)
 assert s2.solve(progress=lambda shot: shot["shot"] < 3) == "stopped" and s2.shots == 3
@@ -102,9 +106,14 @@ raises(TypeError, ["max_shots"], lambda: hemirad.Solver(scene, max_shots=1.5))
 raises(ValueError, ["--shooter-parallax"], lambda: hemirad.Solver(scene, shooter_parallax=-1))
 # Incremental re-solving: an edit leaves the converged solver unconverged; solve() goes on
 # from its solution (fewer shots than the first solve) and the edit shows in the read-outs.
-# (A solver of its own, made after the temporary ones above: a solver that steps on after
-# another one in the process was destroyed gets wrong form factors, an open bug of the GL
-# context handling, not of the edits.)
+# `early` steps on after the temporary solvers above were made and destroyed: the same shots
+# as `s`, alone, and the same read-outs (before the GL contexts were counted, a destroyed
+# solver's took the display down with it and these were wrong).
+del s2, s3
+assert early.solve() == "converged" and early.shots == s.shots, (early.shots, s.shots)
+E_early = early.irradiance(rows[:, 0:3], rows[:, 3:6], gather_rays=256)
+assert np.allclose(E_early, E, rtol=1e-9, atol=0), np.abs(E_early - E).max()
+del early
 s = hemirad.Solver(scene, tolerance=0.02)
 assert s.solve() == "converged"
 first = s.shots

@@ -2,8 +2,9 @@
 // enumerated EGL device), with OSMesa as the fallback. One small platform class per backend
 // behind this interface; no GL or EGL types here.
 //
-// GL entry points are process-wide (glad): keep one context at a time per process, and call
-// make_current() before using a context on another thread.
+// GL entry points are process-wide (glad). Several contexts may live in one process (EGL's
+// display is counted, the last context terminates it); whoever draws makes its own context
+// current first (make_current() is cheap when it already is), as the hemicube provider does.
 #pragma once
 
 #include <memory>
