@@ -16,8 +16,11 @@ namespace hemirad {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-/// Neighbouring cells whose sky radiance differs by more than this fraction are split.
+/// Cells across which the sky's radiance changes by more than this fraction are split (their
+/// neighbouring pilots, kPilot to a cell, differing by more than kSteep / kPilot).
 constexpr double kSteep = 0.25;
+/// Pilot rays per cell along each axis of the unit square (sky_irradiance).
+constexpr int kPilot = 2;
 
 /// What a sky ray sees: a polygon, the sky, or the ground (the same as a polygon when the
 /// ground is black).
@@ -106,31 +109,43 @@ dvec3 sky_irradiance(const Sky& sky, const Bounds& bounds, const Bvh& bvh, const
         return ground ? Seen::Ground : Seen::Polygon;
     };
     const int m = coarse;
-    std::vector<Seen> seen(std::size_t(m * m));
-    std::vector<double> value(std::size_t(m * m));
-    // The pilot: a ray through each cell's centre. It only decides which cells are split, so
-    // that decision does not depend on the random samples that estimate the cells (a decision
-    // taken from the estimates themselves would bias them).
-    for (int j = 0; j < m; ++j)
-        for (int i = 0; i < m; ++i)
-            seen[std::size_t(j * m + i)] =
-                trace((i + 0.5) / m, (j + 0.5) / m, value[std::size_t(j * m + i)]);
+    // The pilots: rays through the centres of a (kPilot m)^2 grid, kPilot^2 in each cell. They
+    // only decide which cells are split, so that decision does not depend on the random samples
+    // that estimate the cells (a decision taken from the estimates themselves would bias them).
+    // A cell is split when one of its pilots sees another thing than one of its 4 neighbouring
+    // pilots, or sky more than kSteep / kPilot brighter or darker (the circumsolar peak).
+    const int pm = kPilot * m;
+    std::vector<Seen> seen(std::size_t(pm * pm));
+    std::vector<double> value(std::size_t(pm * pm));
+    for (int j = 0; j < pm; ++j)
+        for (int i = 0; i < pm; ++i)
+            seen[std::size_t(j * pm + i)] =
+                trace((i + 0.5) / pm, (j + 0.5) / pm, value[std::size_t(j * pm + i)]);
+    const auto differs = [&](std::size_t a, std::size_t o) {
+        if (seen[o] != seen[a]) return true;
+        return seen[a] != Seen::Polygon &&
+               std::abs(value[o] - value[a]) > kSteep / kPilot * std::max(value[o], value[a]);
+    };
+    std::vector<char> split(std::size_t(m * m), 0);
+    const auto mark = [&](int i, int j) { split[std::size_t((j / kPilot) * m + i / kPilot)] = 1; };
+    for (int j = 0; j < pm; ++j)
+        for (int i = 0; i < pm; ++i) {
+            const std::size_t a = std::size_t(j * pm + i);
+            // u1 (the radius) is clamped at 0 and 1; u2 (the azimuth) wraps.
+            if (i + 1 < pm && differs(a, a + 1)) {
+                mark(i, j);
+                mark(i + 1, j);
+            }
+            const int j2 = (j + 1) % pm;
+            if (differs(a, std::size_t(j2 * pm + i))) {
+                mark(i, j);
+                mark(i, j2);
+            }
+        }
     double sum = 0;
     for (int j = 0; j < m; ++j)
         for (int i = 0; i < m; ++i) {
-            const std::size_t c = std::size_t(j * m + i);
-            // u1 (the radius) is clamped at 0 and 1; u2 (the azimuth) wraps. A neighbour that
-            // sees another thing, or sky more than kSteep brighter or darker (the clear sky's
-            // circumsolar peak), makes this cell an edge.
-            const auto differs = [&](std::size_t o) {
-                if (seen[o] != seen[c]) return true;
-                return seen[c] != Seen::Polygon &&
-                       std::abs(value[o] - value[c]) > kSteep * std::max(value[o], value[c]);
-            };
-            const bool edge = (i > 0 && differs(c - 1)) || (i + 1 < m && differs(c + 1)) ||
-                              differs(std::size_t(((j + m - 1) % m) * m + i)) ||
-                              differs(std::size_t(((j + 1) % m) * m + i));
-            if (!edge) { // one jittered ray
+            if (!split[std::size_t(j * m + i)]) { // one jittered ray
                 double L = 0;
                 trace((i + rng.uniform()) / m, (j + rng.uniform()) / m, L);
                 sum += L;

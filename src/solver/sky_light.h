@@ -33,13 +33,14 @@ SkyDelivery deliver_skylight(const Scene& scene, Hierarchy& hierarchy, int threa
 
 /// The sky's direct irradiance at x with unit normal n on polygon `self` (kNoPolygon off the
 /// surfaces) in a scene of bounds `bounds` [W unit^-2], equal RGB. Stratified cosine rays from
-/// x + offset n: one jittered ray in each of coarse x coarse cells of the unit square; a cell
-/// whose pilot ray (through its centre; the pilots only choose the cells to split, so the
-/// estimate stays unbiased) sees another thing (a polygon, the sky, the ground) than one of its 4
-/// neighbours' (the azimuth wraps), or sky more than 25 % brighter or darker (the clear sky's
-/// circumsolar region), lies on the edge of an opening or the horizon and is sampled again by fine
-/// x fine jittered rays instead. So the edges of openings are resolved as by (coarse * fine)^2
-/// stratified rays at the cost of the cells along them. `rays` counts them.
+/// x + offset n over coarse x coarse cells of the unit square (core/sampling.h
+/// cosine_direction): pilot rays through the centres of a grid twice as fine decide which cells
+/// lie on the edge of an opening or the horizon (two neighbouring pilots see different things:
+/// a polygon, the sky, the ground) or in the clear sky's circumsolar region (sky changing by
+/// more than 25 % across a cell); those are sampled by fine x fine jittered rays, the others by one
+/// jittered ray. The pilots only choose, so the estimate is unbiased; the edges of openings
+/// are resolved as by (coarse * fine)^2 stratified rays at the cost of the cells along them.
+/// `rays` counts the rays cast (pilots too).
 dvec3 sky_irradiance(const Sky& sky, const Bounds& bounds, const Bvh& bvh, const dvec3& x,
                      const dvec3& n, std::uint32_t self, double offset, Rng& rng, int coarse = 32,
                      int fine = 8, std::uint64_t* rays = nullptr);
