@@ -243,9 +243,11 @@ DaylightStats daylight_stats(const GridResult& g, double daylight_lux) {
     d.min = df.front();
     d.median = n % 2 ? df[n / 2] : 0.5 * (df[n / 2 - 1] + df[n / 2]);
     d.max = df.back();
+    // DF >= k %, to 1e-9 %: a point at exactly k % after the 683 / E_h round trip counts.
     for (int k = 0; k < 3; ++k)
         d.share[k] =
-            double(df.end() - std::lower_bound(df.begin(), df.end(), double(k + 1))) / double(n);
+            double(df.end() - std::lower_bound(df.begin(), df.end(), double(k + 1) - 1e-9)) /
+            double(n);
     return d;
 }
 
