@@ -171,3 +171,36 @@ TEST(Grid, ManyTilesEachPointOnItsTile) {
         ASSERT_NEAR(gp.E.x, 1.0 + gp.polygon, 1e-5);
     }
 }
+
+// Daylight factors (--daylight-factor): DF = 100 * 683 * Y / E_h over the evaluated points; a
+// hand-made grid of five grey points with DF 0.5, 1, 2, 2.5, 4 % under E_h = 10000 lx (and one
+// skipped point): avg 2, min 0.5, median 2, max 4, shares >= 1, 2, 3 %: 4/5, 3/5, 1/5.
+TEST(Grid, DaylightFactorStatistics) {
+    GridResult g;
+    g.spec = {"floor", 3, 2};
+    for (double df : {0.5, 1.0, 2.0, 2.5, 4.0}) {
+        GridPoint p;
+        p.on_surface = true;
+        p.E = dvec3(df / 100 * 10000 / 683.0);
+        g.points.push_back(p);
+    }
+    g.points.push_back(GridPoint{}); // skipped
+    const std::vector<double> df = daylight_factors(g, 10000);
+    ASSERT_EQ(df.size(), 5u);
+    EXPECT_NEAR(df[2], 2.0, 1e-12);
+    const std::string j = grid_json(g, false, 10000).dump();
+    const auto value = [&](const std::string& key) { // the number after "key": in j's "DF"
+        const auto at = j.find("\"" + key + "\": ", j.find("\"DF\""));
+        return at == std::string::npos ? -1.0 : std::stod(j.substr(at + key.size() + 4));
+    };
+    const std::pair<const char*, double> expected[] = {
+        {"avg", 2},          {"min", 0.5},        {"median", 2},      {"max", 4},
+        {"share_ge_1", 0.8}, {"share_ge_2", 0.6}, {"share_ge_3", 0.2}};
+    for (const auto& [key, v] : expected) EXPECT_NEAR(value(key), v, 1e-9) << key << " in " << j;
+    EXPECT_EQ(grid_json(g, false).dump().find("DF"), std::string::npos); // only when asked
+    const std::string line = grid_summary(g, false, 10000);
+    EXPECT_NE(line.find("DF avg 2 %, min 0.5 %, median 2 %"), std::string::npos) << line;
+    const std::string csv = grids_csv({g}, false, 10000);
+    EXPECT_NE(csv.find("E_Y,DF\n"), std::string::npos) << csv;
+    EXPECT_NE(csv.find(",,,,\n"), std::string::npos) << csv; // the skipped point
+}

@@ -28,6 +28,12 @@
 // (one shadow ray per emitter, times its exact unoccluded form factor) plus rho H of one
 // more cosine ray from y into the solution.
 //
+// The sky (sky.h) is direct light gathered apart at the point (at() only, not direct_at()):
+// stratified cosine rays that leave the scene bring the sky's or the ground's luminance, with
+// the cells on the edges of openings sampled finer (solver/sky_light.h sky_irradiance). The
+// indirect rays' escapes bring nothing (that light is the direct part), except for the second
+// rays from a hit near the point, which bring the sky's radiance.
+//
 // Results depend only on the solution, the options and the point's index (each point has its
 // own generator seeded from `seed` and the index), not on the number of threads.
 #pragma once
@@ -57,7 +63,11 @@ struct GatherOptions {
     /// visible (fast, for points); off: always sum the fine cells (no step where one coarse
     /// ray first meets an occluder: smooth penumbrae in images).
     bool coarse_test = true;
-    int threads = 0; ///< worker threads; 0 = all cores
+    /// Sky (Scene::sky): sky_cells^2 stratified cosine rays per point, and sky_split^2 more in
+    /// each cell on the edge of an opening or the horizon (solver/sky_light.h sky_irradiance).
+    int sky_cells = 32; ///< 4..256 (typical 16-64)
+    int sky_split = 8;  ///< 1..32 (typical 4-16)
+    int threads = 0;    ///< worker threads; 0 = all cores
 };
 
 /// Throws InputError naming the option (--gather-rays, --gather-angle) and the value.
@@ -108,6 +118,7 @@ class HEMIRAD_API FinalGather {
     std::vector<std::uint32_t> emitters_; ///< polygons with exitance > 0
     std::vector<double> leaf_size_;       ///< per polygon, sqrt(area) / 2^depth [unit]
     double offset_ = 0;                   ///< origin offset along the normal [unit]
+    Bounds bounds_;                       ///< the scene's
 };
 
 } // namespace hemirad

@@ -75,11 +75,19 @@ HEMIRAD_API GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec,
 /// The report entry: {group, nx, ny, points, skipped, E_min, E_avg, E_max (luminance,
 /// W unit^-2), U0 = Emin/Eavg, "Emin/Emax", E_rgb {min, avg, max}, and with lux:
 /// lux {min, avg, max}}.
-HEMIRAD_API Json grid_json(const GridResult& g, bool lux);
+/// With a daylight reference E_h > 0 [lux] (`--daylight-factor`, the sky's horizontal
+/// illuminance) also "DF": {avg, min, median, max, "share_ge_1", "share_ge_2", "share_ge_3"}:
+/// daylight factors DF = 100 * 683 * Y / E_h [%] over the evaluated points, and the fractions of
+/// those points (0..1) with DF >= 1, 2, 3 %.
+HEMIRAD_API Json grid_json(const GridResult& g, bool lux, double daylight_lux = 0);
+
+/// The daylight factors 100 * 683 * Y / E_h [%] of a grid's evaluated points, in point order.
+HEMIRAD_API std::vector<double> daylight_factors(const GridResult& g, double daylight_lux);
 
 /// One line for people: "floor 9x9: Emin 96.2 lx, Eavg 161.9 lx, Emax 243 lx, U0 = Emin/Eavg
 /// 0.594, Emin/Emax 0.396" (in W/unit² without lux).
-HEMIRAD_API std::string grid_summary(const GridResult& g, bool lux);
+/// With a daylight reference E_h > 0 [lux]: ", DF avg 2.31 %, min 0.52 %, median 1.9 %".
+HEMIRAD_API std::string grid_summary(const GridResult& g, bool lux, double daylight_lux = 0);
 
 /// A false-colour plan view of a grid (`hemirad solve --grid-png DIR`): one cell per point, to
 /// scale, seen from the front of the surface (u to the right, v up), coloured by its value
@@ -87,10 +95,14 @@ HEMIRAD_API std::string grid_summary(const GridResult& g, bool lux);
 /// enough; points on no polygon grey; the positions of the luminaires in front of the plane
 /// within the grid marked with a cross and their name; a title with Emin, Eavg, Emax, U0 and
 /// Emin/Emax and a colour legend. Values in lux with `lux`, else W/unit².
+/// With a daylight reference E_h > 0 [lux] the title also has the DF summary (grid_summary).
 HEMIRAD_API Image8 grid_plan_image(const GridResult& g, bool lux,
-                                   const std::vector<Luminaire>& luminaires);
+                                   const std::vector<Luminaire>& luminaires,
+                                   double daylight_lux = 0);
 
-/// CSV of all grids: group,i,j,x,y,z,E_r,E_g,E_b,E_Y[,lux]; a skipped point has empty values.
-HEMIRAD_API std::string grids_csv(const std::vector<GridResult>& grids, bool lux);
+/// CSV of all grids: group,i,j,x,y,z,E_r,E_g,E_b,E_Y[,lux][,DF]; a skipped point has empty
+/// values. DF [%] with a daylight reference E_h > 0 [lux] (grid_json).
+HEMIRAD_API std::string grids_csv(const std::vector<GridResult>& grids, bool lux,
+                                  double daylight_lux = 0);
 
 } // namespace hemirad

@@ -56,6 +56,7 @@
 #include "hemirad/report.h"
 #include "hemirad/scene.h"
 #include "hemirad/scene_io.h"
+#include "hemirad/sky.h"
 #include "hemirad/solution_file.h"
 #include "hemirad/solver.h"
 #include "hemirad/solver_options.h"

@@ -13,7 +13,9 @@
 // counted (no truncation unless max_bounces asks for it). The estimator is a path tracer
 // with next-event estimation and multiple importance sampling (Veach 1997, ch. 9, the
 // balance heuristic, eq. 9.10) of the emitted part, and Russian roulette; point luminaires
-// (photometry.h) by next-event estimation at every vertex; path_tracer.cpp writes out the maths.
+// (photometry.h) and the sun (sun.h) by next-event estimation at every vertex; the sky (sky.h)
+// by the cosine-sampled rays that leave the scene, its luminance evaluated by the tracer's own
+// code; path_tracer.cpp writes out the maths.
 #pragma once
 
 #include <cstddef>

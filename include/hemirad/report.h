@@ -21,7 +21,10 @@ namespace hemirad {
 HEMIRAD_API Json solve_report(Solver& solver);
 /// The same with calculation grids (grid.h): adds `grids: [grid_json(...)]`, and with `lux`
 /// photometric values (lux, for scenes in metres; weighting in grid.h).
-HEMIRAD_API Json solve_report(Solver& solver, const std::vector<GridResult>& grids, bool lux);
+/// With a daylight reference E_h > 0 [lux] (`--daylight-factor`) each grid has its daylight
+/// factors (grid_json) and the report "daylight_factor": {"E_h": E_h}.
+HEMIRAD_API Json solve_report(Solver& solver, const std::vector<GridResult>& grids, bool lux,
+                              double daylight_lux = 0);
 
 /// A luminaire's schedule entry: name, kind (ies, candela, spot), file (ies), position, aim,
 /// rotation [deg], multiplier, lumens (integrated from the distribution, multiplier applied),
@@ -68,9 +71,11 @@ HEMIRAD_API std::vector<ProbeValue> evaluate_probes(const std::vector<Probe>& pr
 /// CSV x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group. Without a gather E is interpolated between
 /// the leaves around the point and a point on no surface gets empty E columns; with a final
 /// gather (gather.h) E is evaluated at the point itself, also in free space (polygon empty).
-/// Either way a point on no surface has "none" as its group.
+/// Either way a point on no surface has "none" as its group. With a daylight reference
+/// E_h > 0 [lux] (`--daylight-factor`) a last column DF = 100 * 683 * Y / E_h [%], Y the
+/// luminance-weighted E (grid.h).
 HEMIRAD_API std::string probes_csv(const std::vector<Probe>& probes, const Hierarchy& h,
-                                   const FinalGather* gather = nullptr);
+                                   const FinalGather* gather = nullptr, double daylight_lux = 0);
 
 /// Writes a whole file atomically (temporary file, then rename): never a partial file.
 HEMIRAD_API void write_text_file(const std::string& path, const std::string& contents);

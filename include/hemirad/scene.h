@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 
 #include "hemirad/photometry.h"
+#include "hemirad/sky.h"
 #include "hemirad/sun.h"
 #include "hemirad/texture.h"
 #include "hemirad/visibility.h"
@@ -90,6 +91,10 @@ struct HEMIRAD_API Scene {
     /// every leaf patch before the first shot (solver/sun_light.h) and gathered exactly at
     /// points. Not in emitted_power(): what it delivers depends on the geometry.
     std::optional<Sun> sun;
+    /// The sky (sky.h; SCENE.json "sky"), a distant luminous hemisphere with the ground below
+    /// the horizon: what it sends to every leaf patch is delivered before the first shot
+    /// (solver/sky_light.h) and gathered at points. Not in emitted_power().
+    std::optional<Sky> sky;
     std::vector<std::string> warnings; ///< things the loader fixed or dropped, for reports
     /// Reflectance textures (Material::texture); empty in an untextured scene.
     std::vector<Texture> textures;

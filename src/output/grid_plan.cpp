@@ -27,7 +27,8 @@ std::string format_value(double v) {
 
 } // namespace
 
-Image8 grid_plan_image(const GridResult& g, bool lux, const std::vector<Luminaire>& luminaires) {
+Image8 grid_plan_image(const GridResult& g, bool lux, const std::vector<Luminaire>& luminaires,
+                       double daylight_lux) {
     const int nx = g.spec.nx, ny = g.spec.ny;
     const double k = lux ? kLumensPerWatt : 1.0;
     const double hi = k * g.Y_max > 0 ? k * g.Y_max : 1.0;
@@ -40,7 +41,7 @@ Image8 grid_plan_image(const GridResult& g, bool lux, const std::vector<Luminair
     const std::string title = "grid " + g.spec.group + " " + std::to_string(nx) + "x" +
                               std::to_string(ny) + " (" + std::to_string(g.evaluated) +
                               " points), plan seen from the front: u right, v up";
-    const std::string summary = grid_summary(g, lux);
+    const std::string summary = grid_summary(g, lux, daylight_lux);
     constexpr int kLeft = 10, kTop = 34, kPanel = 130, kBottom = 12;
     const int width = std::max(kLeft + plan_w + kPanel,
                                kLeft + std::max(text_width(title), text_width(summary)) + 10);

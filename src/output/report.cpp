@@ -115,11 +115,21 @@ Json solve_report(Solver& solver) {
     return j;
 }
 
-Json solve_report(Solver& solver, const std::vector<GridResult>& grids, bool lux) {
+Json solve_report(Solver& solver, const std::vector<GridResult>& grids, bool lux,
+                  double daylight_lux) {
     Json j = solve_report(solver);
+    if (daylight_lux > 0) {
+        Json d = Json::object();
+        d["E_h"] = daylight_lux;
+        d["definition"] = "DF = 100 * 683 lm/W * Y / E_h [%], Y the luminance-weighted "
+                          "irradiance [W m^-2], E_h the sky's unobstructed horizontal "
+                          "illuminance [lux]; share_ge_k: fraction of a grid's points with "
+                          "DF >= k %";
+        j["daylight_factor"] = d;
+    }
     if (grids.empty()) return j;
     Json a = Json::array();
-    for (const GridResult& g : grids) a.push_back(grid_json(g, lux));
+    for (const GridResult& g : grids) a.push_back(grid_json(g, lux, daylight_lux));
     j["grids"] = a;
     j["grid_quantities"] =
         lux ? "grids: E_min/E_avg/E_max = luminance-weighted irradiance (0.2126 R + 0.7152 G + "
@@ -221,26 +231,29 @@ std::vector<ProbeValue> evaluate_probes(const std::vector<Probe>& probes, const 
 }
 
 std::string probes_csv(const std::vector<Probe>& probes, const Hierarchy& h,
-                       const FinalGather* gather) {
+                       const FinalGather* gather, double daylight_lux) {
+    const bool df = daylight_lux > 0;
     const Scene& scene = h.scene();
     const std::vector<ProbeValue> values = evaluate_probes(probes, h, gather);
     std::ostringstream s;
     s.precision(9);
-    s << "x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group\n";
+    s << "x,y,z,nx,ny,nz,E_r,E_g,E_b,polygon,group" << (df ? ",DF" : "") << "\n";
     for (std::size_t k = 0; k < probes.size(); ++k) {
         const Probe& p = probes[k];
         const ProbeValue& v = values[k];
         s << p.position.x << "," << p.position.y << "," << p.position.z << "," << p.normal.x << ","
           << p.normal.y << "," << p.normal.z << ",";
         if (!v.E) {
-            s << ",,,,none\n";
+            s << ",,,,none" << (df ? "," : "") << "\n";
             continue;
         }
         s << v.E->x << "," << v.E->y << "," << v.E->z << ",";
         if (v.polygon)
-            s << *v.polygon << "," << scene.groups[scene.polygons[*v.polygon].group] << "\n";
+            s << *v.polygon << "," << scene.groups[scene.polygons[*v.polygon].group];
         else
-            s << ",none\n";
+            s << ",none";
+        if (df) s << "," << 100 * kLumensPerWatt * luminance(v.E->x, v.E->y, v.E->z) / daylight_lux;
+        s << "\n";
     }
     return s.str();
 }

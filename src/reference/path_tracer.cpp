@@ -40,6 +40,12 @@
 // only; no cosine ray can hit a point). The sun (sun.h) is a delta directional light: at every
 // vertex it adds E_n/683 max(0, n.s) when the ray from x along s leaves the scene unblocked.
 //
+// The sky (sky.h) is seen by the cosine-sampled rays alone: a ray that leaves the scene from
+// vertex k brings beta_k * pi L(w)/683 (f/p_b = L cos / (cos/pi)), L the sky's luminance above
+// the horizon or the ground's below. Its luminance is evaluated here by the formulas written
+// out again (ReferenceSky below) and normalised by another quadrature than the solver's (sky.cpp),
+// from the sky's inputs only (model, E_h, ground reflectance, zenith, sun).
+//
 // A sample of E(x) is then sum over vertices k of beta_k * (the I_e terms at vertex k).
 // max_bounces = m > 0 stops the path after m reflections (light reflected at most m times).
 #include "hemirad/reference.h"
@@ -49,6 +55,7 @@
 #include <limits>
 #include <mutex>
 #include <numbers>
+#include <optional>
 
 #include "core/parallel.h"
 #include "core/sampling.h"
@@ -81,11 +88,69 @@ double max_channel(const dvec3& v) {
     return std::max({v.x, v.y, v.z});
 }
 
+/// The sky's luminance for the reference, from Sky's inputs only (not Sky::shape, scale).
+/// Relative luminance in terms of the zenith angle Z and the angle chi from the sun:
+///   overcast  (1 + 2 cos Z)/3 (CIE 1955, Moon & Spencer); uniform 1;
+///   CIE S 011 type 12 (clear) and 7 (intermediate):
+///     (1 + a e^(b / cos Z)) (1 + c (e^(d chi) - e^(d pi/2)) + e cos^2 chi).
+/// Normalised so that integral of L cos Z over the upper hemisphere is E_h, by the midpoint
+/// rule in (Z, azimuth) with weight sin Z cos Z (sky.cpp uses the cosine-weighted square).
+class ReferenceSky {
+  public:
+    explicit ReferenceSky(const Sky& sky)
+        : model_(sky.model), up_(glm::normalize(sky.up)), sun_(glm::normalize(sky.sun)) {
+        ground_ = sky.ground_reflectance * (sky.illuminance + sky.sun_horizontal) / kPi;
+        // An orthonormal frame about the zenith for the quadrature.
+        const dvec3 any = std::abs(up_.y) < 0.9 ? dvec3(0, 1, 0) : dvec3(1, 0, 0);
+        const dvec3 e1 = glm::normalize(glm::cross(any, up_)), e2 = glm::cross(up_, e1);
+        constexpr int kZ = 720, kA = 1440;
+        const double dz = (kPi / 2) / kZ, da = 2 * kPi / kA;
+        double integral = 0;
+        for (int i = 0; i < kZ; ++i) {
+            const double z = (i + 0.5) * dz;
+            double ring = 0;
+            for (int k = 0; k < kA; ++k) {
+                const double a = (k + 0.5) * da;
+                ring += relative(std::sin(z) * (std::cos(a) * e1 + std::sin(a) * e2) +
+                                 std::cos(z) * up_);
+            }
+            integral += ring * std::sin(z) * std::cos(z) * dz * da;
+        }
+        scale_ = sky.illuminance > 0 ? sky.illuminance / integral : 0.0;
+    }
+
+    /// Luminance seen along unit w [cd m^-2].
+    double luminance(const dvec3& w) const {
+        return glm::dot(w, up_) > 0 ? scale_ * relative(w) : ground_;
+    }
+
+  private:
+    double relative(const dvec3& w) const {
+        const double cz = glm::dot(w, up_);
+        const double zenith_angle = std::acos(std::clamp(cz, -1.0, 1.0));
+        if (model_ == SkyModel::Uniform) return 1.0;
+        if (model_ == SkyModel::CieOvercast) return (1 + 2 * std::cos(zenith_angle)) / 3;
+        const bool clear = model_ == SkyModel::CieClear;
+        const double a = clear ? -1.0 : 0.0, b = clear ? -0.32 : -1.0, c = clear ? 10.0 : 5.0,
+                     d = clear ? -3.0 : -2.5, e = clear ? 0.45 : 0.30;
+        const double chi = std::atan2(glm::length(glm::cross(w, sun_)), glm::dot(w, sun_));
+        const double gradation =
+            zenith_angle < kPi / 2 ? 1 + a * std::exp(b / std::cos(zenith_angle)) : 1.0;
+        return gradation * (1 + c * (std::exp(d * chi) - std::exp(d * kPi / 2)) +
+                            e * std::pow(std::cos(chi), 2));
+    }
+
+    SkyModel model_;
+    dvec3 up_, sun_;
+    double scale_ = 0, ground_ = 0;
+};
+
 class PathTracer {
   public:
     /// offset: how far ray origins leave a surface along its normal [unit].
     PathTracer(const Scene& scene, int max_bounces, double offset)
         : scene_(scene), bvh_(scene), max_bounces_(max_bounces), offset_(offset) {
+        if (scene.sky) sky_.emplace(*scene.sky);
         select_.assign(scene.polygons.size(), 0.0);
         double total = 0;
         for (std::uint32_t i = 0; i < scene.polygons.size(); ++i) {
@@ -115,8 +180,11 @@ class PathTracer {
             const double cos_x = glm::dot(n, w);
             if (!(cos_x > 0)) break; // measure zero: the tangent plane
             Hit hit;
-            if (!bvh_.intersect(x, w, std::numeric_limits<double>::infinity(), hit, ignore))
-                break;             // escaped: nothing comes from outside the scene
+            if (!bvh_.intersect(x, w, std::numeric_limits<double>::infinity(), hit, ignore)) {
+                // Escaped: the sky or the ground, if any (pi L / 683 per unit of beta).
+                if (sky_) E += beta * (kPi * sky_->luminance(w) / kLumensPerWatt);
+                break;
+            }
             if (!hit.front) break; // a back: radiance 0, and it reflects nothing either
             const Polygon& p = scene_.polygons[hit.polygon];
             const Material& m = scene_.material_of(p);
@@ -206,6 +274,7 @@ class PathTracer {
     std::vector<double> cdf_;             ///< running sums of emitters' power weights
     std::vector<double> select_;          ///< per polygon: s_P (0 for non-emitters)
     bool sum_all_ = true;
+    std::optional<ReferenceSky> sky_; ///< the scene's sky, if any
 };
 
 // Throws InputError for a probe the estimator cannot place (checked before any thread starts:

@@ -173,7 +173,8 @@ void finish_scene(Scene& s, const std::string& origin) {
     if (s.polygons.empty())
         throw InputError(origin, 0, "the scene has no polygons (nothing to solve)");
     const dvec3 power = s.emitted_power();
-    const bool sunlit = s.sun && s.sun->normal_irradiance() > 0;
+    const bool sunlit = (s.sun && s.sun->normal_irradiance() > 0) ||
+                        (s.sky && (s.sky->illuminance > 0 || s.sky->ground_luminance() > 0));
     if (!(power.x > 0 || power.y > 0 || power.z > 0) && !sunlit)
         s.warnings.push_back(s.luminaires.empty()
                                  ? std::string(kNoEmitterWarning) +
@@ -273,6 +274,18 @@ void mix_sun(Fnv1a& mix, const std::optional<Sun>& sun) {
     mix(&e, sizeof e);
 }
 
+/// The sky's model, illuminance, ground and sun position (none: nothing, so a scene without a
+/// sky hashes as it always did).
+void mix_sky(Fnv1a& mix, const std::optional<Sky>& sky) {
+    if (!sky) return;
+    const auto model = int(sky->model);
+    mix(&model, sizeof model);
+    for (const double* v : {&sky->illuminance, &sky->ground_reflectance, &sky->sun_horizontal})
+        mix(v, sizeof(double));
+    mix(&sky->up, sizeof(dvec3));
+    if (sky_needs_sun(sky->model)) mix(&sky->sun, sizeof(dvec3));
+}
+
 /// A luminaire's placement and distribution; its multiplier when `multiplier`.
 void mix_luminaire(Fnv1a& mix, const Luminaire& l, bool multiplier) {
     for (const dvec3* v : {&l.position, &l.aim, &l.c0}) mix(v, sizeof(dvec3));
@@ -308,6 +321,7 @@ std::uint64_t Scene::content_hash() const {
     // of a scene without luminaires is what it always was).
     for (const Luminaire& l : luminaires) mix_luminaire(mix, l, true);
     mix_sun(mix, sun);
+    mix_sky(mix, sky);
     return mix.h;
 }
 
@@ -329,6 +343,7 @@ std::uint64_t Scene::geometry_hash() const {
     // The sun: incremental re-solving does not edit it, so a solution of another sun is of
     // another scene.
     mix_sun(mix, sun);
+    mix_sky(mix, sky);
     return mix.h;
 }
 

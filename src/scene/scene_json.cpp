@@ -440,6 +440,37 @@ Sun read_sun(const Reader& r, const json& j, const SkyFrame& frame,
     return sun;
 }
 
+// "sky": "model", "illuminance" (E_h [lux]), "ground_reflectance" (sky.h); the sun's position
+// from the scene's "sun" for the models that need it.
+Sky read_sky(const Reader& r, const json& j, const SkyFrame& frame, const std::optional<Sun>& sun) {
+    const std::string at = "/sky";
+    r.only_keys(j, at, {"model", "illuminance", "ground_reflectance"});
+    const std::string models = "cie-overcast, cie-clear, cie-intermediate or uniform";
+    if (!j.contains("model")) r.fail(at, "the sky needs 'model': " + models);
+    SkyModel model{};
+    const std::string name = r.string(j["model"], at + "/model");
+    if (!parse_sky_model(name, model))
+        r.fail(at + "/model", "unknown sky model '" + name + "' (expected " + models + ")");
+    if (!j.contains("illuminance"))
+        r.fail(at, "the sky needs 'illuminance': its unobstructed horizontal illuminance E_h "
+                   "[lux], e.g. 10000");
+    const double e_h = r.number(j["illuminance"], at + "/illuminance");
+    if (!(e_h >= 0))
+        r.fail(at + "/illuminance", "must be >= 0 lux, got " + Reader::dump(j["illuminance"]));
+    double rho_g = 0;
+    if (j.contains("ground_reflectance")) {
+        rho_g = r.number(j["ground_reflectance"], at + "/ground_reflectance");
+        if (!(rho_g >= 0 && rho_g <= 1))
+            r.fail(at + "/ground_reflectance",
+                   "must be in [0, 1], got " + Reader::dump(j["ground_reflectance"]));
+    }
+    if (sky_needs_sun(model) && !sun)
+        r.fail(at + "/model", "the " + name +
+                                  " sky needs the sun's position: add \"sun\" (its "
+                                  "\"illuminance\" may be 0 for the sky alone)");
+    return make_sky(model, e_h, rho_g, frame.up, sun);
+}
+
 } // namespace
 
 bool is_scene_json(const std::string& path) {
@@ -466,7 +497,8 @@ Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
     KeyLines locator(text);
     json::sax_parse(text, &locator);
     const Reader r(path, locator.lines);
-    r.only_keys(doc, "", {"include", "luminaires", "cameras", "two_sided", "sun", "up", "north"});
+    r.only_keys(doc, "",
+                {"include", "luminaires", "cameras", "two_sided", "sun", "sky", "up", "north"});
 
     Scene scene;
     scene.source = path;
@@ -519,6 +551,7 @@ Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
     }
     const SkyFrame frame = read_sky_frame(r, doc);
     if (doc.contains("sun")) scene.sun = read_sun(r, doc["sun"], frame, scene.warnings);
+    if (doc.contains("sky")) scene.sky = read_sky(r, doc["sky"], frame, scene.sun);
     if (doc.contains("cameras")) {
         const json& cs = doc["cameras"];
         if (!cs.is_array()) r.fail("/cameras", "expected a list of cameras [{...}, ...]");

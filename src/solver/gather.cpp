@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "core/parallel.h"
 #include "core/sampling.h"
@@ -10,6 +11,7 @@
 #include "hemirad/error.h"
 #include "hemirad/form_factors.h"
 #include "hemirad/readout.h"
+#include "solver/sky_light.h"
 #include "solver/sun_light.h"
 
 namespace hemirad {
@@ -32,6 +34,9 @@ void validate_gather_options(const GatherOptions& o) {
         throw InputError("--gather-rays " + std::to_string(o.rays) + " must be in 16..65536");
     if (!(o.emitter_angle > 0 && o.emitter_angle <= 1))
         throw InputError("--gather-angle " + num(o.emitter_angle) + " must be in (0, 1]");
+    if (o.sky_cells < 4 || o.sky_cells > 256 || o.sky_split < 1 || o.sky_split > 32)
+        throw InputError("gather sky cells " + std::to_string(o.sky_cells) + " and split " +
+                         std::to_string(o.sky_split) + " must be in 4..256 and 1..32");
     if (o.threads < 0)
         throw InputError("gather threads " + std::to_string(o.threads) + " must be >= 0");
 }
@@ -42,7 +47,8 @@ FinalGather::FinalGather(const Hierarchy& h, const GatherOptions& options)
     const Scene& scene = h.scene();
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
         if (nonzero(scene.material_of(scene.polygons[p]).exitance())) emitters_.push_back(p);
-    offset_ = 1e-9 * scene.bounds().diagonal();
+    bounds_ = scene.bounds();
+    offset_ = 1e-9 * bounds_.diagonal();
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
         leaf_size_.push_back(std::sqrt(scene.polygons[p].area) / double(1u << h.depth(p)));
 }
@@ -132,7 +138,14 @@ dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_
                              bool near_path) const {
     const Scene& scene = h_->scene();
     Hit hit;
-    if (!bvh_->intersect(origin, dir, 1e300, hit, self) || !hit.front) return dvec3(0.0);
+    if (!bvh_->intersect(origin, dir, 1e300, hit, self)) {
+        // Escaped: the sky (or the ground) for the rays from a hit near the point; the first
+        // rays' sky is the direct part (at()), gathered apart.
+        const Scene& sc = h_->scene();
+        if (near_path || !sc.sky) return dvec3(0.0);
+        return dvec3(std::numbers::pi * sc.sky->radiance(glm::normalize(dir)));
+    }
+    if (!hit.front) return dvec3(0.0);
     const Polygon& q = scene.polygons[hit.polygon];
     const dvec3 rho = reflectance_at(scene, hit.polygon, hit.u, hit.v); // the texel there
     if (!(rho.x > 0 || rho.y > 0 || rho.z > 0)) return dvec3(0.0);
@@ -183,6 +196,11 @@ GatherValue FinalGather::at(const GatherPoint& q, std::uint64_t index) const {
     const std::uint32_t self = q.polygon == GatherPoint::kNoSurface ? kNoPolygon : q.polygon;
     const std::uint64_t seed = splitmix64(options_.seed ^ splitmix64(index));
     v.direct = direct(q.position, n, self, seed);
+    if (h_->scene().sky) {
+        Rng rng(splitmix64(seed + 2));
+        v.direct += sky_irradiance(*h_->scene().sky, bounds_, *bvh_, q.position, n, self, offset_,
+                                   rng, options_.sky_cells, options_.sky_split);
+    }
     v.indirect = indirect(q.position, n, self, splitmix64(seed + 1));
     return v;
 }

@@ -215,7 +215,45 @@ GridResult evaluate_grid(const Hierarchy& h, const GridSpec& spec, const FinalGa
     return r;
 }
 
-Json grid_json(const GridResult& g, bool lux) {
+std::vector<double> daylight_factors(const GridResult& g, double daylight_lux) {
+    std::vector<double> df;
+    for (const GridPoint& p : g.points)
+        if (p.on_surface) df.push_back(100 * kLumensPerWatt * lum(p.E) / daylight_lux);
+    return df;
+}
+
+namespace {
+
+struct DaylightStats {
+    std::size_t points = 0;
+    double avg = 0, min = 0, median = 0, max = 0; ///< [%]
+    double share[3] = {0, 0, 0};                  ///< fractions with DF >= 1, 2, 3 %
+};
+
+DaylightStats daylight_stats(const GridResult& g, double daylight_lux) {
+    std::vector<double> df = daylight_factors(g, daylight_lux);
+    DaylightStats d;
+    d.points = df.size();
+    if (df.empty()) return d;
+    std::sort(df.begin(), df.end());
+    double sum = 0;
+    for (double v : df) sum += v;
+    const std::size_t n = df.size();
+    d.avg = sum / double(n);
+    d.min = df.front();
+    d.median = n % 2 ? df[n / 2] : 0.5 * (df[n / 2 - 1] + df[n / 2]);
+    d.max = df.back();
+    // DF >= k %, to 1e-9 %: a point at exactly k % after the 683 / E_h round trip counts.
+    for (int k = 0; k < 3; ++k)
+        d.share[k] =
+            double(df.end() - std::lower_bound(df.begin(), df.end(), double(k + 1) - 1e-9)) /
+            double(n);
+    return d;
+}
+
+} // namespace
+
+Json grid_json(const GridResult& g, bool lux, double daylight_lux) {
     Json o = Json::object();
     o["group"] = g.spec.group;
     o["nx"] = g.spec.nx;
@@ -235,12 +273,24 @@ Json grid_json(const GridResult& g, bool lux) {
         o["lux"]["avg"] = kLumensPerWatt * g.Y_avg;
         o["lux"]["max"] = kLumensPerWatt * g.Y_max;
     }
+    if (daylight_lux > 0) {
+        const DaylightStats d = daylight_stats(g, daylight_lux);
+        Json o_df = Json::object();
+        if (d.points > 0) {
+            o_df["avg"] = d.avg;
+            o_df["min"] = d.min;
+            o_df["median"] = d.median;
+            o_df["max"] = d.max;
+            for (int k = 0; k < 3; ++k) o_df["share_ge_" + std::to_string(k + 1)] = d.share[k];
+        }
+        o["DF"] = o_df;
+    }
     o["width"] = g.width;
     o["height"] = g.height;
     return o;
 }
 
-std::string grid_summary(const GridResult& g, bool lux) {
+std::string grid_summary(const GridResult& g, bool lux, double daylight_lux) {
     const double k = lux ? kLumensPerWatt : 1.0;
     const char* unit = lux ? " lx" : " W/unit²";
     char buf[400];
@@ -249,24 +299,35 @@ std::string grid_summary(const GridResult& g, bool lux) {
                   "Emin/Emax %.3f",
                   g.spec.group.c_str(), g.spec.nx, g.spec.ny, k * g.Y_min, unit, k * g.Y_avg, unit,
                   k * g.Y_max, unit, g.U0, g.min_over_max);
-    return buf;
+    std::string line = buf;
+    if (daylight_lux > 0) {
+        const DaylightStats d = daylight_stats(g, daylight_lux);
+        if (d.points > 0) {
+            std::snprintf(buf, sizeof buf, ", DF avg %.3g %%, min %.3g %%, median %.3g %%", d.avg,
+                          d.min, d.median);
+            line += buf;
+        }
+    }
+    return line;
 }
 
-std::string grids_csv(const std::vector<GridResult>& grids, bool lux) {
+std::string grids_csv(const std::vector<GridResult>& grids, bool lux, double daylight_lux) {
+    const bool df = daylight_lux > 0;
     std::ostringstream s;
     s.precision(9);
-    s << "group,i,j,x,y,z,E_r,E_g,E_b,E_Y" << (lux ? ",lux" : "") << "\n";
+    s << "group,i,j,x,y,z,E_r,E_g,E_b,E_Y" << (lux ? ",lux" : "") << (df ? ",DF" : "") << "\n";
     for (const GridResult& g : grids) {
         for (const GridPoint& p : g.points) {
             s << g.spec.group << "," << p.i << "," << p.j << "," << p.position.x << ","
               << p.position.y << "," << p.position.z << ",";
             if (!p.on_surface) {
-                s << ",,," << (lux ? "," : "") << "\n";
+                s << ",,," << (lux ? "," : "") << (df ? "," : "") << "\n";
                 continue;
             }
             const double y = lum(p.E);
             s << p.E.x << "," << p.E.y << "," << p.E.z << "," << y;
             if (lux) s << "," << kLumensPerWatt * y;
+            if (df) s << "," << 100 * kLumensPerWatt * y / daylight_lux;
             s << "\n";
         }
     }

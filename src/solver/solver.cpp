@@ -11,6 +11,7 @@
 #include "hemirad/solver_options.h"
 #include "solver/cluster_tree.h"
 #include "solver/plane_cuts.h"
+#include "solver/sky_light.h"
 #include "solver/solver_detail.h"
 #include "solver/sun_light.h"
 
@@ -116,6 +117,10 @@ void Solver::init() {
     const SunDelivery sun = deliver_sunlight(*scene_, hierarchy_);
     emitted_ += sun.power;
     absorbed_ += sun.absorbed;
+    // The sky's (and the ground's) likewise (sky_light.h).
+    const SkyDelivery sky = deliver_skylight(*scene_, hierarchy_);
+    emitted_ += sky.power;
+    absorbed_ += sky.absorbed;
     rho_max_ = scene_->max_reflectance();
     // Default minimum shooter size: the size of the smallest leaf patches' polygons' leaves.
     max_size_ = options_.shooter_max_size > 0 ? options_.shooter_max_size : 1e300;

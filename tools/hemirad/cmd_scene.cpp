@@ -124,6 +124,15 @@ int cmd_scene(int argc, char** argv) {
             o["illuminance"] = scene.sun->illuminance;
             j["sun"] = o;
         }
+        if (scene.sky) {
+            Json o = Json::object();
+            o["model"] = sky_model_name(scene.sky->model);
+            o["illuminance"] = scene.sky->illuminance;
+            o["ground_reflectance"] = scene.sky->ground_reflectance;
+            o["zenith_luminance"] = scene.sky->luminance(scene.sky->up);
+            o["ground_luminance"] = scene.sky->ground_luminance();
+            j["sky"] = o;
+        }
         Json cams = Json::array();
         for (const Camera& c : scene.cameras) cams.push_back(c.name);
         j["cameras"] = cams;
@@ -170,6 +179,13 @@ int cmd_scene(int argc, char** argv) {
                     c(s.direction.x), c(s.direction.y), c(s.direction.z), s.altitude_deg,
                     s.azimuth_deg, s.illuminance,
                     s.normal_irradiance() > 0 ? "" : " (below the horizon: dark)");
+    }
+    if (scene.sky) {
+        const Sky& k = *scene.sky;
+        std::printf("sky        %s, E_h %.6g lx (horizontal, sky alone), zenith %.6g cd/m2, "
+                    "ground reflectance %.3g (%.6g cd/m2)\n",
+                    sky_model_name(k.model), k.illuminance, k.luminance(k.up), k.ground_reflectance,
+                    k.ground_luminance());
     }
     return 0;
 }

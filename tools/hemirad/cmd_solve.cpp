@@ -135,6 +135,15 @@ int cmd_solve(int argc, char** argv) {
     install_interrupt_handler();
     Scene scene = load_scene(scene_name, builtin, obj);
     apply_scene_edits(edits, scene); // the solver edits no further: one scene throughout
+    if (exports.daylight_factor) {
+        if (!scene.sky)
+            throw InputError("--daylight-factor needs a sky: " + scene_name +
+                             " has no \"sky\" (SCENE.json \"sky\": {\"model\": "
+                             "\"cie-overcast\", \"illuminance\": 10000})");
+        if (!(scene.sky->illuminance > 0))
+            throw InputError("--daylight-factor needs a sky with \"illuminance\" > 0 lux");
+        exports.daylight_lux = scene.sky->illuminance;
+    }
     print_warnings(scene, quiet);
     // Everything that needs only the scene is checked before the first output is opened.
     for (const GridSpec& g : grid_specs) grid_polygons(scene, g);
@@ -274,7 +283,7 @@ int cmd_solve(int argc, char** argv) {
     const Stopwatch points_timer;
     const std::vector<GridResult> grids = evaluate_grids(grid_specs, h, gather.get(), quiet);
     std::string probe_text;
-    if (!probes_out.empty()) probe_text = probes_csv(probes, h, gather.get());
+    if (!probes_out.empty()) probe_text = probes_csv(probes, h, gather.get(), exports.daylight_lux);
     if (gather && !quiet) {
         std::size_t points = probes.size();
         for (const GridResult& g : grids) points += std::size_t(g.evaluated);
@@ -284,7 +293,8 @@ int cmd_solve(int argc, char** argv) {
     }
     if (!quiet)
         for (const GridResult& g : grids)
-            std::fprintf(stderr, "hemirad: grid %s\n", grid_summary(g, exports.lux).c_str());
+            std::fprintf(stderr, "hemirad: grid %s\n",
+                         grid_summary(g, exports.lux, exports.daylight_lux).c_str());
     if (!report.empty()) {
         Json resume = Json::object();
         if (resumed) {
@@ -296,7 +306,8 @@ int cmd_solve(int argc, char** argv) {
             resume["luminaires_changed"] = resume_edits.luminaires;
             resume["polygons_changed"] = resume_edits.polygons;
         }
-        write_report(report, solver, scene, grids, exports.lux, resumed ? &resume : nullptr);
+        write_report(report, solver, scene, grids, exports.lux, exports.daylight_lux,
+                     resumed ? &resume : nullptr);
         if (!quiet) std::fprintf(stderr, "hemirad: wrote %s (JSON report)\n", report.c_str());
     }
     if (!probes_out.empty()) {

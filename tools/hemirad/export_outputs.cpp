@@ -17,7 +17,7 @@ void add_export_options(ArgParser& args, ExportOptions& o) {
     args.multi("--grid", &o.grids, "GROUP:NXxNY",
                "irradiance on NXxNY points over a planar surface group (repeatable; x or ×)");
     args.option("--grid-out", &o.grid_out, "FILE.csv",
-                "all grid points: group,i,j,x,y,z,E_r,E_g,E_b,E_Y[,lux]");
+                "all grid points: group,i,j,x,y,z,E_r,E_g,E_b,E_Y[,lux][,DF]");
     args.option("--grid-png", &o.grid_png, "DIR",
                 "per grid, DIR/GROUP.png: a false-colour plan with the value of every point, "
                 "Emin, Eavg, Emax, U0 and Emin/Emax (lux with --lux) and the luminaires");
@@ -37,6 +37,10 @@ void add_export_options(ArgParser& args, ExportOptions& o) {
                 "final gather at each point: direct light from the emitters with their area "
                 "visibility sampled, indirect from the solution by rays (off: interpolate the "
                 "leaf patches around the point)");
+    args.flag("--daylight-factor", &o.daylight_factor,
+              "probes, grids, grid plans and the report also in daylight factor DF = 100 E / "
+              "E_h % (column DF; per grid DF avg, min, median, share >= 1, 2, 3 %), E_h the "
+              "sky's horizontal illuminance; needs a \"sky\" in the SCENE.json");
     args.option("--gather-rays", &o.gather_options.rays, "N",
                 "final gather: cosine rays per point for the indirect light (16..65536)");
     args.option("--gather-angle", &o.gather_options.emitter_angle, "A",
@@ -108,7 +112,7 @@ std::vector<GridResult> evaluate_grids(const std::vector<GridSpec>& specs, const
 
 void write_export_outputs(const ExportOptions& o, const std::vector<GridResult>& grids,
                           const Hierarchy& h, bool quiet) {
-    if (!o.grid_out.empty()) write_text_file(o.grid_out, grids_csv(grids, o.lux));
+    if (!o.grid_out.empty()) write_text_file(o.grid_out, grids_csv(grids, o.lux, o.daylight_lux));
     if (!o.grid_png.empty()) {
         std::error_code ec;
         std::filesystem::create_directories(o.grid_png, ec);
@@ -127,7 +131,7 @@ void write_export_outputs(const ExportOptions& o, const std::vector<GridResult>&
                     .append(std::to_string(g.spec.ny));
             used.insert(name);
             const std::string path = (std::filesystem::path(o.grid_png) / (name + ".png")).string();
-            write_png(path, grid_plan_image(g, o.lux, h.scene().luminaires));
+            write_png(path, grid_plan_image(g, o.lux, h.scene().luminaires, o.daylight_lux));
             if (!quiet) std::fprintf(stderr, "hemirad: wrote %s (grid plan)\n", path.c_str());
         }
     }

@@ -20,6 +20,8 @@ struct ExportOptions {
     std::string grid_out;           ///< --grid-out FILE.csv: every grid's points, one file
     std::string grid_png;           ///< --grid-png DIR: a false-colour plan per grid
     bool lux = false;               ///< --lux (shared with the images): grids also in lux
+    bool daylight_factor = false;   ///< --daylight-factor: probes and grids also in DF %
+    double daylight_lux = 0;        ///< E_h [lux] of the scene's sky, set by cmd_solve
     std::string ply;                ///< --export-ply FILE.ply
     std::string lightmaps;          ///< --export-lightmaps DIR
     std::string save_solution;      ///< --save-solution FILE: solver state at the end

@@ -36,9 +36,10 @@ void write_outputs(const OutputOptions& o, Solver& solver, bool quiet) {
 }
 
 void write_report(const std::string& path, Solver& solver, const Scene& scene,
-                  const std::vector<GridResult>& grids, bool lux, const Json* resume) {
+                  const std::vector<GridResult>& grids, bool lux, double daylight_lux,
+                  const Json* resume) {
     (void)scene;
-    Json j = solve_report(solver, grids, lux);
+    Json j = solve_report(solver, grids, lux, daylight_lux);
     if (resume) j["resume"] = *resume;
     write_text_file(path, j.dump() + "\n");
 }

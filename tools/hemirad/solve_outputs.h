@@ -24,7 +24,7 @@ void write_outputs(const OutputOptions& o, Solver& solver, bool quiet);
 /// file, shots_before, shots_this_run, incremental, luminaires_changed, polygons_changed).
 void write_report(const std::string& path, Solver& solver, const Scene& scene,
                   const std::vector<GridResult>& grids = {}, bool lux = false,
-                  const Json* resume = nullptr);
+                  double daylight_lux = 0, const Json* resume = nullptr);
 
 /// SIGINT/SIGTERM set a flag: the solve finishes its shot, writes its outputs, exits non-zero.
 void install_interrupt_handler();
