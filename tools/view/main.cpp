@@ -20,13 +20,19 @@
 
 #include "cli/cli_options.h"
 #include "cli/tool_main.h"
+#include "ff/bvh.h"
 #include "hemirad/draw.h"
 #include "hemirad/error.h"
+#include "hemirad/gather.h"
 #include "hemirad/image.h"
+#include "hemirad/photometry.h"
 #include "hemirad/render.h"
+#include "hemirad/report.h"
 #include "hemirad/solver.h"
 #include "orbit_camera.h"
 #include "overlay.h"
+#include "pick.h"
+#include "script.h"
 
 namespace hemirad::view {
 namespace {
@@ -56,8 +62,10 @@ struct Options {
     bool no_ambient = false, no_overlay = false, flat = false, edges = false, paused = false;
     bool false_colour = false, show_help = false, quiet = false;
     bool highlight = false, inset = false;
-    bool two_sided = false; ///< draw the backs of polygons (black) instead of culling
-    double exposure = 0;    ///< [stops]
+    bool two_sided = false;     ///< draw the backs of polygons (black) instead of culling
+    double exposure = 0;        ///< [stops]
+    std::string script;         ///< FILE: commands, one a line (script.h)
+    std::string units = "auto"; ///< pick values: auto, lux or W
 };
 
 /// Everything the input callbacks change.
@@ -315,6 +323,12 @@ void validate(const Options& o, const ArgParser& args) {
         (o.screenshot.size() < 4 || o.screenshot.substr(o.screenshot.size() - 4) != ".png"))
         throw InputError("--screenshot " + o.screenshot + ": expected a .png file name");
     if (!std::isfinite(o.exposure)) throw InputError("--exposure must be finite");
+    if (o.units != "auto" && o.units != "lux" && o.units != "W")
+        throw InputError("--units '" + o.units + "' must be auto, lux or W");
+    if (!o.script.empty() &&
+        (!o.screenshot.empty() || args.given("--after-shots") || args.given("--frames")))
+        throw InputError("--script cannot be combined with --screenshot, --after-shots or "
+                         "--frames (use the script's shots and screenshot commands)");
 }
 
 /// Shots and frames per second over the last second or so.
@@ -337,6 +351,61 @@ class Rate {
     double rate_ = 0;
 };
 
+/// Drawing time per frame (render, overlays, swap; not the solving between frames) [ms].
+class FrameTimes {
+  public:
+    void add(Clock::duration d) {
+        last_ = std::chrono::duration<double, std::milli>(d).count();
+        all_.push_back(last_);
+    }
+    double last_ms() const { return last_; }
+    /// "frame-time: N frames drawn, mean M ms, median D ms, max X ms".
+    std::string summary() const {
+        if (all_.empty()) return "frame-time: no frames drawn";
+        std::vector<double> v = all_;
+        std::sort(v.begin(), v.end());
+        double sum = 0;
+        for (double t : v) sum += t;
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "frame-time: %zu frames drawn, mean %.1f ms, median %.1f ms, max %.1f ms",
+                      v.size(), sum / double(v.size()), v[v.size() / 2], v.back());
+        return text;
+    }
+
+  private:
+    std::vector<double> all_;
+    double last_ = 0;
+};
+
+/// Runs a script command on the solver: shots and edits (the rest is the caller's: pick,
+/// screenshot and quit need the window). Edits throw InputError for an unknown name.
+void run_command(const ScriptCommand& c, Solver& solver, bool& running, bool quiet) {
+    switch (c.kind) {
+    case ScriptCommand::Kind::Shots: {
+        const long before = solver.shots();
+        for (long k = 0; k < c.shots; ++k)
+            if (!solver.step()) break;
+        running = solver.stop_reason() == StopReason::Running;
+        if (!quiet)
+            std::fprintf(stderr, "%s: shots %ld: %ld shots done (%ld in all), error bound %.3e%s\n",
+                         kTool, c.shots, solver.shots() - before, solver.shots(),
+                         solver.error_bound(), running ? "" : " (solver stopped)");
+        break;
+    }
+    case ScriptCommand::Kind::Luminaire:
+        solver.set_luminaire_multiplier(c.name, c.multiplier);
+        running = true;
+        break;
+    case ScriptCommand::Kind::Reflectance:
+        solver.set_reflectance(c.name, c.rho);
+        running = true;
+        break;
+    default:
+        break;
+    }
+}
+
 int run(int argc, char** argv) {
     Options o;
     SolverOptions so;
@@ -345,7 +414,10 @@ int run(int argc, char** argv) {
     ArgParser args(kTool, "hemirad-view SCENE [options]",
                    "Opens a window on a scene, solves it progressively between frames and\n"
                    "shows the solution as it converges. Press H in the window for the keys.\n"
-                   "With --screenshot, --after-shots or --frames it saves a frame and exits.");
+                   "With --screenshot, --after-shots or --frames it saves a frame and exits.\n"
+                   "With --script FILE it runs FILE's commands, one a line, drawing the window\n"
+                   "after each, and exits at the end (the solver shoots only on 'shots'):\n" +
+                       std::string(kScriptHelp));
     args.positional(
         "SCENE", &o.scene,
         std::string("OBJ or glTF (.gltf, .glb) file, SCENE.json (OBJ or glTF files, luminaires, "
@@ -375,6 +447,12 @@ int run(int argc, char** argv) {
     args.option("--after-shots", &o.after_shots, "N",
                 "... once N shots are done (solving stops there)");
     args.option("--frames", &o.frames, "K", "... at frame K (without --screenshot: exit)");
+    args.option("--script", &o.script, "FILE",
+                "run FILE's commands (above), one a line; pick lines and, at the end, a "
+                "'frame-time:' summary (drawing time per frame) go to standard output");
+    args.option("--units", &o.units, "auto|lux|W",
+                "pick values in lux (scene in metres) or W/unit^2; auto: lux when the scene "
+                "has luminaires (their photometry is in metres)");
     args.flag("--quiet", &o.quiet, "print nothing but errors");
     add_solver_options(args, so);
     add_scene_options(args, builtin, obj);
@@ -382,11 +460,17 @@ int run(int argc, char** argv) {
     validate(o, args);
     std::optional<Camera> user_camera;
     if (!o.camera.empty()) user_camera = parse_camera(o.camera);
-    const bool scripted = !o.screenshot.empty() || o.after_shots >= 0 || o.frames > 0;
+    const bool script_mode = !o.script.empty();
+    const bool scripted =
+        !o.screenshot.empty() || o.after_shots >= 0 || o.frames > 0 || script_mode;
 
-    // Load the scene before opening a window: a bad scene is an error message, not a window.
-    const Scene scene = load_scene(o.scene, builtin, obj);
+    // Load the scene and the script before opening a window: bad input is an error message,
+    // not a window. The scene is not const: the script's edits change its photometry.
+    Scene scene = load_scene(o.scene, builtin, obj);
     print_scene_warnings(kTool, scene, o.quiet);
+    const std::vector<ScriptCommand> script =
+        script_mode ? read_script(o.script) : std::vector<ScriptCommand>{};
+    const bool lux = o.units == "lux" || (o.units == "auto" && !scene.luminaires.empty());
 
     glfwSetErrorCallback(on_glfw_error);
     if (!glfwInit())
@@ -457,6 +541,11 @@ int run(int argc, char** argv) {
 
         bool running = true; // the solver has not stopped
         long frames = 0;
+        std::size_t next_command = 0;   // in `script`
+        std::string pending_screenshot; // a script's screenshot, taken after this frame
+        bool quit = false;              // the script ended
+        std::optional<Picker> picker;   // built on the first pick (a BVH of the scene)
+        FrameTimes frame_times;
         Rate shot_rate, frame_rate;
         auto last = Clock::now();
         const auto budget = std::chrono::duration<double, std::milli>(o.budget_ms);
@@ -465,7 +554,7 @@ int run(int argc, char** argv) {
         signal(SIGTERM, on_signal);
         while (!glfwWindowShouldClose(window) && !g_interrupted) {
             const bool shot_cap = o.after_shots >= 0 && solver.shots() >= o.after_shots;
-            const bool solving = running && !shot_cap && (!s.paused || s.step_once);
+            const bool solving = running && !shot_cap && !script_mode && (!s.paused || s.step_once);
             // Idle (paused, converged, minimised): wait for input instead of spinning.
             if (!solving && !s.dirty && !scripted)
                 glfwWaitEventsTimeout(0.25);
@@ -475,9 +564,40 @@ int run(int argc, char** argv) {
             fly(window, s, std::chrono::duration<double>(now - last).count());
             last = now;
 
+            if (script_mode) {
+                if (next_command < script.size()) {
+                    const ScriptCommand& c = script[next_command++];
+                    // An edit's or a pick's bad value (an unknown name): at the script's line.
+                    try {
+                        run_command(c, solver, running, o.quiet);
+                        if (c.kind == ScriptCommand::Kind::Pick) {
+                            int ww = 1, wh = 1;
+                            glfwGetWindowSize(window, &ww, &wh);
+                            if (c.x >= ww || c.y >= wh)
+                                throw InputError("pixel " + std::to_string(c.x) + " " +
+                                                 std::to_string(c.y) + " is outside the " +
+                                                 std::to_string(ww) + "x" + std::to_string(wh) +
+                                                 " window");
+                            if (!picker) picker.emplace(scene);
+                            const PickResult r = picker->pick(solver.solution(), s.camera.camera(),
+                                                              ww, wh, c.x, c.y);
+                            std::printf("%s\n", pick_line(c.x, c.y, r, lux).c_str());
+                            std::fflush(stdout);
+                        }
+                    } catch (const InputError& e) {
+                        throw InputError(o.script, c.line, e.what());
+                    }
+                    if (c.kind == ScriptCommand::Kind::Screenshot) pending_screenshot = c.name;
+                    if (c.kind == ScriptCommand::Kind::Quit) quit = true;
+                } else {
+                    quit = true;
+                }
+                s.dirty = true;
+            }
+
             // Solve for the frame's budget: at least one shot while not converged.
             long shots_before = solver.shots();
-            if (running && !shot_cap && (!s.paused || s.step_once)) {
+            if (running && !shot_cap && !script_mode && (!s.paused || s.step_once)) {
                 const auto t0 = Clock::now();
                 do {
                     if (!solver.step()) {
@@ -502,11 +622,13 @@ int run(int argc, char** argv) {
             s.fb_width = fbw;
             s.fb_height = fbh;
             if (fbw <= 0 || fbh <= 0) { // minimised: nothing to draw into
+                if (quit) break;
                 if (!running || s.paused) glfwWaitEventsTimeout(0.1);
                 continue;
             }
             if (!s.dirty && !scripted) continue;
             s.dirty = false;
+            const auto draw_start = Clock::now();
 
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
             glViewport(0, 0, fbw, fbh);
@@ -556,10 +678,10 @@ int run(int argc, char** argv) {
                 char line[512];
                 std::snprintf(
                     line, sizeof line,
-                    "shots %ld  unshot %.2e  bound %.2e  %.1f shots/s  %.0f FPS  "
+                    "shots %ld  unshot %.2e  bound %.2e  %.1f shots/s  %.0f FPS  draw %.0f ms  "
                     "exp %+.1f%s%s%s",
                     solver.shots(), solver.unshot_fraction(), solver.error_bound(),
-                    shot_rate.rate(), frame_rate.rate(), s.exposure,
+                    shot_rate.rate(), frame_rate.rate(), frame_times.last_ms(), s.exposure,
                     s.ambient && !s.false_colour ? "  ambient" : "", s.paused ? "  [paused]" : "",
                     running ? ""
                             : (std::string("  [") + to_string(solver.stop_reason()) + "]").c_str());
@@ -601,6 +723,20 @@ int run(int argc, char** argv) {
                 overlay.blit(text_panel("H: help"), 4, 4, fbw, fbh);
 
             ++frames;
+            if (script_mode) {
+                if (!pending_screenshot.empty()) {
+                    glFinish();
+                    write_png(pending_screenshot, read_back_buffer(fbw, fbh));
+                    if (!o.quiet)
+                        std::fprintf(stderr, "%s: wrote %s (%dx%d) after %ld shots\n", kTool,
+                                     pending_screenshot.c_str(), fbw, fbh, solver.shots());
+                    pending_screenshot.clear();
+                }
+                if (quit) break;
+                glfwSwapBuffers(window);
+                frame_times.add(Clock::now() - draw_start);
+                continue;
+            }
             const bool shots_done =
                 o.after_shots < 0 || solver.shots() >= o.after_shots || !running;
             const bool frames_done = o.frames <= 0 || frames >= o.frames;
@@ -616,7 +752,10 @@ int run(int argc, char** argv) {
                 break;
             }
             glfwSwapBuffers(window);
+            frame_times.add(Clock::now() - draw_start);
         }
+        // A script's summary of the drawing (frames drawn between its commands).
+        if (script_mode) std::printf("%s\n", frame_times.summary().c_str());
     }
     return 0;
 }
