@@ -4,7 +4,8 @@
 # at the picked point) is within 3 % of `hemirad solve --luminaire-multiplier D2=0 --probes` at
 # the same point and normal; the screenshot has the window's size. Then bad scripts: an unknown
 # command, a bad argument and an unknown luminaire name are errors naming the script file and
-# line (non-zero exit, no crash); a reflectance edit and a pick in W/unit^2 (--units W).
+# line (non-zero exit, no crash); a reflectance edit and a pick in W/unit^2 (--units W); the
+# Dear ImGui panels draw (when built with them) and --no-panels hides them.
 #
 # CTest runs: bash viewer_script.sh <path to hemirad> <source dir>
 set -euo pipefail
@@ -69,6 +70,56 @@ xvfb-run -a "$view" "$office" --width 160 --height 120 --script small.txt --unit
     > small_out.txt
 grep -Eq '^pick 80 40: [-0-9.e]+ [-0-9.e]+ [-0-9.e]+ .* W/unit\^2$' small_out.txt ||
     { echo "FAIL: W pick: $(cat small_out.txt)" >&2; exit 1; }
+
+# The Dear ImGui panels (when built with them): drawn in the top left (Solver, Luminaires) and
+# top right (Surface groups) with the status line shown; hidden by --no-panels and --no-overlay.
+help="$("$view" --help)"
+if [[ "$help" == *"--no-panels"*"(key P)"* ]]; then
+    printf 'shots 20\nluminaire D1 multiplier 0\nshots 5\nscreenshot panels.png\n' > panels.txt
+    xvfb-run -a "$view" "$office" --width 480 --height 360 --script panels.txt --quiet >/dev/null
+    sed -i 's/panels.png/plain.png/' panels.txt
+    xvfb-run -a "$view" "$office" --width 480 --height 360 --script panels.txt --no-panels \
+        --quiet >/dev/null
+    python3 - <<'PY'
+import struct, zlib
+def rgb(path):
+    data = open(path, "rb").read()
+    w, h = struct.unpack(">II", data[16:24])
+    pos, idat = 8, b""
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        if kind == b"IDAT": idat += data[pos + 8:pos + 8 + n]
+        pos += 12 + n
+    raw, stride, rows, prev = zlib.decompress(idat), 3 * w, [], bytearray(3 * w)
+    for y in range(h):
+        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - 3] if i >= 3 else 0
+            b, c = prev[i], prev[i - 3] if i >= 3 else 0
+            if f == 1: line[i] = (line[i] + a) & 255
+            elif f == 2: line[i] = (line[i] + b) & 255
+            elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(bytes(line))
+        prev = line
+    return w, h, rows
+w, h, panels = rgb("panels.png")
+_, _, plain = rgb("plain.png")
+assert (w, h) == (480, 360), (w, h)
+def changed(x0, x1, y0, y1):
+    n = sum(panels[y][3 * x:3 * x + 3] != plain[y][3 * x:3 * x + 3]
+            for y in range(y0, y1) for x in range(x0, x1))
+    return n / ((x1 - x0) * (y1 - y0))
+left, right = changed(10, 150, 10, 60), changed(330, 470, 10, 60)
+print(f"panels: {100 * left:.0f}% of the top left and {100 * right:.0f}% of the top right changed")
+assert left > 0.5 and right > 0.5, "no panels drawn"
+PY
+else
+    echo "viewer script: this hemirad-view has no panels (built without Dear ImGui)"
+fi
 
 # Bad scripts: the message names the file and line; a non-zero exit that is not a signal.
 bad() { # bad SCRIPT_TEXT EXPECTED_SUBSTRING

@@ -31,6 +31,9 @@
 #include "hemirad/solver.h"
 #include "orbit_camera.h"
 #include "overlay.h"
+#if HEMIRAD_VIEWER_PANELS
+#include "panels.h"
+#endif
 #include "pick.h"
 #include "script.h"
 
@@ -40,6 +43,24 @@ namespace {
 constexpr const char* kTool = "hemirad-view";
 using Clock = std::chrono::steady_clock;
 
+#if HEMIRAD_VIEWER_PANELS
+constexpr bool kPanels = true;
+bool ui_wants_mouse() {
+    return Panels::wants_mouse();
+}
+bool ui_wants_keyboard() {
+    return Panels::wants_keyboard();
+}
+#else
+constexpr bool kPanels = false;
+bool ui_wants_mouse() {
+    return false;
+}
+bool ui_wants_keyboard() {
+    return false;
+}
+#endif
+
 const char* kHelp = "mouse   left drag: orbit    right/middle drag: pan    wheel: zoom\n"
                     "W S / Up Down: fly forward/back    A D / Left Right: sideways\n"
                     "PgUp PgDn: fly up/down    (hold Shift: 4x faster)\n"
@@ -48,8 +69,8 @@ const char* kHelp = "mouse   left drag: orbit    right/middle drag: pan    wheel
                     "1 / 2  smooth / flat      G  patch edges (grid)\n"
                     "C  false colour (legend)  L  last shooter  I  hemicube\n"
                     "B  ambient term           + / -  exposure up/down (1/2 stop)\n"
-                    "O  status line            H / F1  this help\n"
-                    "T  backs of polygons      Esc / Q  quit";
+                    "O  status line, panels    H / F1  this help\n"
+                    "T  backs of polygons      P  panels    Esc / Q  quit";
 
 struct Options {
     std::string scene;
@@ -60,7 +81,7 @@ struct Options {
     long after_shots = -1;  ///< screenshot (or exit) once this many shots are done
     long frames = -1;       ///< screenshot (or exit) at this frame
     bool no_ambient = false, no_overlay = false, flat = false, edges = false, paused = false;
-    bool false_colour = false, show_help = false, quiet = false;
+    bool false_colour = false, show_help = false, quiet = false, no_panels = false;
     bool highlight = false, inset = false;
     bool two_sided = false;     ///< draw the backs of polygons (black) instead of culling
     double exposure = 0;        ///< [stops]
@@ -74,6 +95,7 @@ struct ViewState {
     Bounds bounds;
     bool flat = false, edges = false, false_colour = false, ambient = true;
     bool paused = false, step_once = false, help = false, status = true;
+    bool panels = true;     ///< the Dear ImGui panels (key P), shown with the status line (key O)
     bool highlight = false; ///< outline the last shot's shooter (key L)
     bool inset = false;     ///< the last hemicube's IDs and form factors (key I)
     bool two_sided = false; ///< draw the backs of polygons (key T); default: culled
@@ -89,9 +111,10 @@ ViewState& state_of(GLFWwindow* w) {
 }
 
 void on_key(GLFWwindow* w, int key, int, int action, int) {
-    if (action != GLFW_PRESS && !(action == GLFW_REPEAT && (key == GLFW_KEY_N))) return;
     ViewState& s = state_of(w);
     s.dirty = true;
+    if (ui_wants_keyboard()) return; // typing into a panel
+    if (action != GLFW_PRESS && !(action == GLFW_REPEAT && (key == GLFW_KEY_N))) return;
     switch (key) {
     case GLFW_KEY_ESCAPE:
     case GLFW_KEY_Q:
@@ -145,6 +168,9 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
     case GLFW_KEY_O:
         s.status = !s.status;
         break;
+    case GLFW_KEY_P:
+        s.panels = !s.panels;
+        break;
     case GLFW_KEY_H:
     case GLFW_KEY_F1:
         s.help = !s.help;
@@ -156,7 +182,8 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
 
 void on_mouse_button(GLFWwindow* w, int button, int action, int) {
     ViewState& s = state_of(w);
-    if (action == GLFW_PRESS && s.drag_button < 0) {
+    s.dirty = true;
+    if (action == GLFW_PRESS && s.drag_button < 0 && !ui_wants_mouse()) {
         s.drag_button = button;
         glfwGetCursorPos(w, &s.last_x, &s.last_y);
     } else if (action == GLFW_RELEASE && button == s.drag_button) {
@@ -166,6 +193,7 @@ void on_mouse_button(GLFWwindow* w, int button, int action, int) {
 
 void on_cursor(GLFWwindow* w, double x, double y) {
     ViewState& s = state_of(w);
+    if (kPanels && s.panels && s.status) s.dirty = true; // hovering a panel redraws it
     if (s.drag_button < 0) return;
     int ww = 1, wh = 1;
     glfwGetWindowSize(w, &ww, &wh);
@@ -181,6 +209,8 @@ void on_cursor(GLFWwindow* w, double x, double y) {
 
 void on_scroll(GLFWwindow* w, double, double yoffset) {
     ViewState& s = state_of(w);
+    s.dirty = true;
+    if (ui_wants_mouse()) return;
     s.camera.zoom(yoffset);
     s.dirty = true;
 }
@@ -417,7 +447,13 @@ int run(int argc, char** argv) {
                    "With --screenshot, --after-shots or --frames it saves a frame and exits.\n"
                    "With --script FILE it runs FILE's commands, one a line, drawing the window\n"
                    "after each, and exits at the end (the solver shoots only on 'shots'):\n" +
-                       std::string(kScriptHelp));
+                       std::string(kScriptHelp) +
+                       (kPanels ? "\nPanels (Dear ImGui; key P): luminaires (on/off, dimmer), "
+                                  "surface groups\n(reflectance, E_avg/E_min/E_max), the solver's "
+                                  "progress and error bound,\nexposure and false colour; each "
+                                  "edit re-solves incrementally."
+                                : "\nThis build has no panels: Dear ImGui (libimgui-dev) was "
+                                  "not found at configure time."));
     args.positional(
         "SCENE", &o.scene,
         std::string("OBJ or glTF (.gltf, .glb) file, SCENE.json (OBJ or glTF files, luminaires, "
@@ -436,7 +472,11 @@ int run(int argc, char** argv) {
               "start with the backs of polygons drawn (black) instead of culled (key T)");
     args.flag("--false-colour", &o.false_colour, "start with false-colour irradiance (key C)");
     args.option("--exposure", &o.exposure, "STOPS", "start exposure (keys + and -)");
-    args.flag("--no-overlay", &o.no_overlay, "start with the status line hidden (key O)");
+    args.flag("--no-overlay", &o.no_overlay,
+              "start with the status line and the panels hidden (key O)");
+    args.flag("--no-panels", &o.no_panels,
+              kPanels ? "start with the Dear ImGui panels hidden (key P)"
+                      : "no effect: this build has no panels (no Dear ImGui at configure time)");
     args.flag("--highlight", &o.highlight, "start with the last shooter outlined (key L)");
     args.flag("--inset", &o.inset, "start with the last hemicube shown as an inset (key I)");
     args.flag("--paused", &o.paused, "start paused (Space resumes, N steps)");
@@ -525,6 +565,7 @@ int run(int argc, char** argv) {
         s.ambient = !o.no_ambient;
         s.paused = o.paused;
         s.status = !o.no_overlay;
+        s.panels = !o.no_panels;
         s.exposure = o.exposure;
         s.help = o.show_help;
         s.highlight = o.highlight;
@@ -538,6 +579,10 @@ int run(int argc, char** argv) {
         glfwSetCursorPosCallback(window, on_cursor);
         glfwSetScrollCallback(window, on_scroll);
         glfwSetFramebufferSizeCallback(window, on_resize);
+#if HEMIRAD_VIEWER_PANELS
+        // After the viewer's callbacks: ImGui's GLFW backend chains them.
+        Panels panels(window, scene);
+#endif
 
         bool running = true; // the solver has not stopped
         long frames = 0;
@@ -722,6 +767,14 @@ int run(int argc, char** argv) {
             else if (s.status && !scripted)
                 overlay.blit(text_panel("H: help"), 4, 4, fbw, fbh);
 
+#if HEMIRAD_VIEWER_PANELS
+            if (s.panels && s.status) {
+                const PanelView pv{&s.false_colour, &s.ambient, &s.paused, &s.exposure};
+                const PanelStats ps{shot_rate.rate(), frame_times.last_ms(), lux};
+                if (panels.draw(solver, pv, ps)) running = true; // an edit: solve again
+                if (ui_wants_mouse()) s.dirty = true;
+            }
+#endif
             ++frames;
             if (script_mode) {
                 if (!pending_screenshot.empty()) {
