@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli/cli_options.h"
@@ -36,6 +38,7 @@
 #endif
 #include "pick.h"
 #include "script.h"
+#include "solve_thread.h"
 
 namespace hemirad::view {
 namespace {
@@ -75,7 +78,7 @@ const char* kHelp = "mouse   left drag: orbit    right/middle drag: pan    wheel
 struct Options {
     std::string scene;
     int width = 960, height = 720;
-    double budget_ms = 30;  ///< solving time per frame [ms], at least one shot
+    double budget_ms = 30;  ///< while solving, at most a frame every budget_ms [ms]
     std::string camera;     ///< empty: the scene's default
     std::string screenshot; ///< FILE.png: save one frame and exit
     long after_shots = -1;  ///< screenshot (or exit) once this many shots are done
@@ -381,7 +384,8 @@ class Rate {
     double rate_ = 0;
 };
 
-/// Drawing time per frame (render, overlays, swap; not the solving between frames) [ms].
+/// Time per frame drawn [ms]: waiting for the solving thread's shot in progress, then
+/// rendering, overlays, panels and the swap.
 class FrameTimes {
   public:
     void add(Clock::duration d) {
@@ -410,27 +414,31 @@ class FrameTimes {
 
 /// Runs a script command on the solver: shots and edits (the rest is the caller's: pick,
 /// screenshot and quit need the window). Edits throw InputError for an unknown name.
-void run_command(const ScriptCommand& c, Solver& solver, bool& running, bool quiet) {
+void run_command(const ScriptCommand& c, SolveThread& solve, bool quiet) {
     switch (c.kind) {
     case ScriptCommand::Kind::Shots: {
-        const long before = solver.shots();
-        for (long k = 0; k < c.shots; ++k)
-            if (!solver.step()) break;
-        running = solver.stop_reason() == StopReason::Running;
+        const long before = solve.shots();
+        solve.shoot(c.shots); // on the solving thread; waits
+        auto l = solve.lock();
+        const Solver& solver = solve.solver();
         if (!quiet)
             std::fprintf(stderr, "%s: shots %ld: %ld shots done (%ld in all), error bound %.3e%s\n",
                          kTool, c.shots, solver.shots() - before, solver.shots(),
-                         solver.error_bound(), running ? "" : " (solver stopped)");
+                         solver.error_bound(), solve.stopped() ? " (solver stopped)" : "");
         break;
     }
-    case ScriptCommand::Kind::Luminaire:
-        solver.set_luminaire_multiplier(c.name, c.multiplier);
-        running = true;
+    case ScriptCommand::Kind::Luminaire: {
+        auto l = solve.lock();
+        solve.solver().set_luminaire_multiplier(c.name, c.multiplier);
+        solve.edited();
         break;
-    case ScriptCommand::Kind::Reflectance:
-        solver.set_reflectance(c.name, c.rho);
-        running = true;
+    }
+    case ScriptCommand::Kind::Reflectance: {
+        auto l = solve.lock();
+        solve.solver().set_reflectance(c.name, c.rho);
+        solve.edited();
         break;
+    }
     default:
         break;
     }
@@ -462,7 +470,9 @@ int run(int argc, char** argv) {
     args.section("window");
     args.option("--width", &o.width, "W", "window width [pixels]");
     args.option("--height", &o.height, "H", "window height [pixels]");
-    args.option("--budget", &o.budget_ms, "MS", "solving time per frame (at least one shot)");
+    args.option("--budget", &o.budget_ms, "MS",
+                "while solving (on its own thread), a frame at most every MS, and after at "
+                "least as long as the last frame took (the solver waits while one is drawn)");
     args.option("--camera", &o.camera, "E,T,U,FOV",
                 "eye x,y,z, target x,y,z, up x,y,z, vertical fov [deg] (default: the scene's)");
     args.flag("--no-ambient", &o.no_ambient, "start with the ambient term off (key B)");
@@ -544,8 +554,17 @@ int run(int argc, char** argv) {
 
     // GL objects (provider, renderer, overlay) live in this scope, inside the window's life.
     {
-        so.provider.gpu.use_current_context = true;
-        Solver solver(scene, so);
+        // The solver shoots on its own thread, in the GL context of a hidden window (created
+        // here: GLFW creates windows on the main thread only); destroyed after the thread.
+        glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+        GLFWwindow* solver_window =
+            glfwCreateWindow(16, 16, "hemirad-view: solver", nullptr, nullptr);
+        if (!solver_window)
+            throw RuntimeError("no OpenGL 4.5 core context for the solving thread: " +
+                               g_glfw_error);
+        WindowDestroy destroy_solver_window{solver_window};
+        SolveThread solve(solver_window, scene, so);
+        Solver& solver = solve.solver(); // only under solve.lock() once the worker runs
         SolutionRenderer renderer(scene);
         Overlay overlay;
         SceneTarget target;
@@ -584,7 +603,10 @@ int run(int argc, char** argv) {
         Panels panels(window, scene);
 #endif
 
-        bool running = true; // the solver has not stopped
+        bool reported_stop = false; // the solver's stop was printed
+        long drawn_shots = -1;      // shots in the last frame drawn
+        long rate_shots = 0;        // shots counted by shot_rate
+        auto last_frame = Clock::now();
         long frames = 0;
         std::size_t next_command = 0;   // in `script`
         std::string pending_screenshot; // a script's screenshot, taken after this frame
@@ -593,18 +615,41 @@ int run(int argc, char** argv) {
         FrameTimes frame_times;
         Rate shot_rate, frame_rate;
         auto last = Clock::now();
-        const auto budget = std::chrono::duration<double, std::milli>(o.budget_ms);
+        const double frame_interval = o.budget_ms / 1000; // while solving [s]
         // Ctrl-C in the terminal closes the window as the close button does.
         signal(SIGINT, on_signal);
         signal(SIGTERM, on_signal);
         while (!glfwWindowShouldClose(window) && !g_interrupted) {
-            const bool shot_cap = o.after_shots >= 0 && solver.shots() >= o.after_shots;
-            const bool solving = running && !shot_cap && !script_mode && (!s.paused || s.step_once);
-            // Idle (paused, converged, minimised): wait for input instead of spinning.
-            if (!solving && !s.dirty && !scripted)
-                glfwWaitEventsTimeout(0.25);
-            else
+            solve.check(); // an error on the solving thread ends the viewer
+            // The solving thread's orders (a script gives its own, by command).
+            if (!script_mode) {
+                if (s.step_once) {
+                    solve.shoot(1);
+                    s.step_once = false;
+                    s.dirty = true;
+                } else if (s.paused) {
+                    solve.pause();
+                } else {
+                    solve.run(o.after_shots >= 0 ? o.after_shots : LONG_MAX);
+                }
+            }
+            const bool solving = solve.busy();
+            // While solving, a frame is due `gap` after the last one ended: --budget, and at
+            // least as long as that frame took, so that the solving thread (which waits while a
+            // frame is drawn) gets at least half the time.
+            const double gap = std::max(frame_interval, frame_times.last_ms() / 1000);
+            const double since_frame =
+                std::chrono::duration<double>(Clock::now() - last_frame).count();
+            // Idle (paused, converged, minimised): wait for input instead of spinning; while
+            // solving, for input or until the next frame is due.
+            if (scripted)
                 glfwPollEvents();
+            else if (s.dirty)
+                glfwPollEvents();
+            else if (solving) // until the frame is due, then in steps of 5 ms for a new shot
+                glfwWaitEventsTimeout(std::max(gap - since_frame, 0.005));
+            else
+                glfwWaitEventsTimeout(0.25);
             const auto now = Clock::now();
             fly(window, s, std::chrono::duration<double>(now - last).count());
             last = now;
@@ -614,8 +659,9 @@ int run(int argc, char** argv) {
                     const ScriptCommand& c = script[next_command++];
                     // An edit's or a pick's bad value (an unknown name): at the script's line.
                     try {
-                        run_command(c, solver, running, o.quiet);
+                        run_command(c, solve, o.quiet);
                         if (c.kind == ScriptCommand::Kind::Pick) {
+                            auto l = solve.lock();
                             int ww = 1, wh = 1;
                             glfwGetWindowSize(window, &ww, &wh);
                             if (c.x >= ww || c.y >= wh)
@@ -640,40 +686,42 @@ int run(int argc, char** argv) {
                 s.dirty = true;
             }
 
-            // Solve for the frame's budget: at least one shot while not converged.
-            long shots_before = solver.shots();
-            if (running && !shot_cap && !script_mode && (!s.paused || s.step_once)) {
-                const auto t0 = Clock::now();
-                do {
-                    if (!solver.step()) {
-                        running = false;
-                        if (!o.quiet)
-                            std::fprintf(stderr,
-                                         "%s: %s after %ld shots in %.2f s: error bound "
-                                         "%.3e\n",
-                                         kTool, to_string(solver.stop_reason()), solver.shots(),
-                                         solver.seconds(), solver.error_bound());
-                        break;
-                    }
-                    if (s.step_once || (o.after_shots >= 0 && solver.shots() >= o.after_shots))
-                        break;
-                } while (Clock::now() - t0 < budget);
-                s.step_once = false;
-                s.dirty = true;
+            const long shots_now = solve.shots();
+            shot_rate.add(shots_now - rate_shots, Clock::now());
+            rate_shots = shots_now;
+            // New shots: draw them, when the next frame is due (a scripted run draws as soon as
+            // there are new shots, and whenever the solver is idle).
+            const bool new_shots = shots_now != drawn_shots;
+            const bool due =
+                std::chrono::duration<double>(Clock::now() - last_frame).count() >= gap;
+            if (new_shots && (due || scripted)) s.dirty = true;
+            if (scripted && !solve.busy()) s.dirty = true;
+            if (scripted && !s.dirty) { // solving, no new shot yet
+                std::this_thread::sleep_for(std::chrono::milliseconds(2));
+                continue;
             }
-            shot_rate.add(solver.shots() - shots_before, Clock::now());
 
             glfwGetFramebufferSize(window, &fbw, &fbh);
             s.fb_width = fbw;
             s.fb_height = fbh;
             if (fbw <= 0 || fbh <= 0) { // minimised: nothing to draw into
                 if (quit) break;
-                if (!running || s.paused) glfwWaitEventsTimeout(0.1);
+                if (!solving) glfwWaitEventsTimeout(0.1);
                 continue;
             }
-            if (!s.dirty && !scripted) continue;
+            if (!s.dirty) continue;
             s.dirty = false;
             const auto draw_start = Clock::now();
+            // The solution is read (and edited by the panels) under the lock: the solving
+            // thread finishes its shot in progress first.
+            auto solver_lock = solve.lock();
+            const bool running = !solve.stopped();
+            drawn_shots = solver.shots();
+            if (!running && !reported_stop && !o.quiet)
+                std::fprintf(stderr, "%s: %s after %ld shots in %.2f s: error bound %.3e\n", kTool,
+                             to_string(solver.stop_reason()), solver.shots(), solver.seconds(),
+                             solver.error_bound());
+            reported_stop = !running;
 
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
             glViewport(0, 0, fbw, fbh);
@@ -771,7 +819,7 @@ int run(int argc, char** argv) {
             if (s.panels && s.status) {
                 const PanelView pv{&s.false_colour, &s.ambient, &s.paused, &s.exposure};
                 const PanelStats ps{shot_rate.rate(), frame_times.last_ms(), lux};
-                if (panels.draw(solver, pv, ps)) running = true; // an edit: solve again
+                if (panels.draw(solver, pv, ps)) solve.edited(); // an edit: solve again
                 if (ui_wants_mouse()) s.dirty = true;
             }
 #endif
@@ -786,8 +834,10 @@ int run(int argc, char** argv) {
                     pending_screenshot.clear();
                 }
                 if (quit) break;
+                solve.release(solver_lock);
                 glfwSwapBuffers(window);
-                frame_times.add(Clock::now() - draw_start);
+                last_frame = Clock::now();
+                frame_times.add(last_frame - draw_start);
                 continue;
             }
             const bool shots_done =
@@ -804,11 +854,17 @@ int run(int argc, char** argv) {
                 }
                 break;
             }
+            solve.release(solver_lock);
             glfwSwapBuffers(window);
-            frame_times.add(Clock::now() - draw_start);
+            last_frame = Clock::now();
+            frame_times.add(last_frame - draw_start);
         }
-        // A script's summary of the drawing (frames drawn between its commands).
-        if (script_mode) std::printf("%s\n", frame_times.summary().c_str());
+        // A script's summary of the drawing (frames drawn between its commands) on standard
+        // output; otherwise on standard error.
+        if (script_mode)
+            std::printf("%s\n", frame_times.summary().c_str());
+        else if (!o.quiet)
+            std::fprintf(stderr, "%s: %s\n", kTool, frame_times.summary().c_str());
     }
     return 0;
 }
