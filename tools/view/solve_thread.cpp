@@ -19,10 +19,8 @@ SolveThread::SolveThread(GLFWwindow* context, Scene& scene, const SolverOptions&
 }
 
 SolveThread::~SolveThread() {
-    {
-        std::lock_guard<std::mutex> l(mutex_);
-        quit_ = true;
-    }
+    // Atomic, not under the mutex: a worker that shoots shot after shot holds it nearly always.
+    quit_.store(true);
     wake_.notify_all();
     if (thread_.joinable()) thread_.join();
 }
@@ -48,7 +46,7 @@ void SolveThread::pause() {
 }
 
 void SolveThread::shoot(long n) {
-    std::unique_lock<std::mutex> l(mutex_);
+    std::unique_lock<std::mutex> l = lock(); // lets a running worker finish its shot first
     target_.store(solver_->shots() + n);
     wake_.notify_all();
     done_.wait(l, [&] { return error_ || stopped_.load() || solver_->shots() >= target_.load(); });
@@ -93,11 +91,11 @@ void SolveThread::work(GLFWwindow* context, Scene* scene, SolverOptions options)
         // Between shots: let a waiting lock() in first, then wait for work.
         // (A lock() holder wakes no one when it lets go: poll every few milliseconds.)
         const auto ready = [&] {
-            return quit_ || (waiting_.load() == 0 && !error_ && !stopped_.load() &&
-                             solver_->shots() < target_.load());
+            return quit_.load() || (waiting_.load() == 0 && !error_ && !stopped_.load() &&
+                                    solver_->shots() < target_.load());
         };
         while (!ready()) wake_.wait_for(l, std::chrono::milliseconds(4));
-        if (quit_) break;
+        if (quit_.load()) break;
         try {
             const auto t0 = std::chrono::steady_clock::now();
             const bool more = solver_->step();

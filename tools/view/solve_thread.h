@@ -38,7 +38,8 @@ class SolveThread {
     std::unique_lock<std::mutex> lock();
     /// Lets go of a lock() and wakes the worker.
     void release(std::unique_lock<std::mutex>& l);
-    /// Only while holding lock() (or before run()/shoot()).
+    /// Only while holding lock() (or before run()/shoot()). Never lock the mutex otherwise:
+    /// a worker that shoots shot after shot lets only a lock() in.
     Solver& solver() { return *solver_; }
 
     /// Shoot until `max_shots` shots are done in all (LONG_MAX: until the solver stops).
@@ -76,7 +77,7 @@ class SolveThread {
     std::atomic<bool> failed_{false}; ///< error_ is set by step()
     std::atomic<int> waiting_{0};     ///< lock() calls waiting: the worker lets them in
     std::atomic<double> shot_seconds_{0};
-    bool quit_ = false;  ///< under mutex_
+    std::atomic<bool> quit_{false};
     bool ready_ = false; ///< under mutex_: the solver is built (or failed to be)
     std::thread thread_;
 };
