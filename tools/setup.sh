@@ -15,6 +15,7 @@ packages=(
   build-essential cmake pkg-config python3
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev   # headless GL: EGL (default), OSMesa
   libglfw3-dev libglm-dev python3-glad                     # viewer window, maths, GL loader
+  libimgui-dev                                             # the viewer's panels (Dear ImGui)
   libopenexr-dev libpng-dev zlib1g-dev libgtest-dev
   libtinyobjloader-dev                                     # tests: the OBJ reader's oracle
   nlohmann-json3-dev                                       # SCENE.json files

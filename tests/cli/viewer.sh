@@ -35,7 +35,7 @@ xvfb-run -a "$view" cornell --screenshot shot.png --after-shots 10 --width 128 -
     --discontinuities off # the viewer draws the leaves only
 # The same frame with the status line (bottom) and the help panel (top left).
 xvfb-run -a "$view" cornell --screenshot overlay.png --after-shots 10 --width 320 --height 240 \
-    --no-ambient --show-help --quiet
+    --no-ambient --show-help --no-panels --quiet
 xvfb-run -a "$view" cornell --screenshot plain.png --after-shots 10 --width 320 --height 240 \
     --no-ambient --no-overlay --quiet
 # After one shot (the shooter: a quarter-by-quarter patch of the light, in view; without the

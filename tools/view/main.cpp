@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -16,23 +17,52 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli/cli_options.h"
 #include "cli/tool_main.h"
+#include "ff/bvh.h"
 #include "hemirad/draw.h"
 #include "hemirad/error.h"
+#include "hemirad/gather.h"
 #include "hemirad/image.h"
+#include "hemirad/photometry.h"
 #include "hemirad/render.h"
+#include "hemirad/report.h"
 #include "hemirad/solver.h"
 #include "orbit_camera.h"
 #include "overlay.h"
+#if HEMIRAD_VIEWER_PANELS
+#include "panels.h"
+#endif
+#include "pick.h"
+#include "script.h"
+#include "solve_thread.h"
 
 namespace hemirad::view {
 namespace {
 
 constexpr const char* kTool = "hemirad-view";
 using Clock = std::chrono::steady_clock;
+
+#if HEMIRAD_VIEWER_PANELS
+constexpr bool kPanels = true;
+bool ui_wants_mouse() {
+    return Panels::wants_mouse();
+}
+bool ui_wants_keyboard() {
+    return Panels::wants_keyboard();
+}
+#else
+constexpr bool kPanels = false;
+bool ui_wants_mouse() {
+    return false;
+}
+bool ui_wants_keyboard() {
+    return false;
+}
+#endif
 
 const char* kHelp = "mouse   left drag: orbit    right/middle drag: pan    wheel: zoom\n"
                     "W S / Up Down: fly forward/back    A D / Left Right: sideways\n"
@@ -42,22 +72,24 @@ const char* kHelp = "mouse   left drag: orbit    right/middle drag: pan    wheel
                     "1 / 2  smooth / flat      G  patch edges (grid)\n"
                     "C  false colour (legend)  L  last shooter  I  hemicube\n"
                     "B  ambient term           + / -  exposure up/down (1/2 stop)\n"
-                    "O  status line            H / F1  this help\n"
-                    "T  backs of polygons      Esc / Q  quit";
+                    "O  status line, panels    H / F1  this help\n"
+                    "T  backs of polygons      P  panels    Esc / Q  quit";
 
 struct Options {
     std::string scene;
     int width = 960, height = 720;
-    double budget_ms = 30;  ///< solving time per frame [ms], at least one shot
+    double budget_ms = 30;  ///< while solving, at most a frame every budget_ms [ms]
     std::string camera;     ///< empty: the scene's default
     std::string screenshot; ///< FILE.png: save one frame and exit
     long after_shots = -1;  ///< screenshot (or exit) once this many shots are done
     long frames = -1;       ///< screenshot (or exit) at this frame
     bool no_ambient = false, no_overlay = false, flat = false, edges = false, paused = false;
-    bool false_colour = false, show_help = false, quiet = false;
+    bool false_colour = false, show_help = false, quiet = false, no_panels = false;
     bool highlight = false, inset = false;
-    bool two_sided = false; ///< draw the backs of polygons (black) instead of culling
-    double exposure = 0;    ///< [stops]
+    bool two_sided = false;     ///< draw the backs of polygons (black) instead of culling
+    double exposure = 0;        ///< [stops]
+    std::string script;         ///< FILE: commands, one a line (script.h)
+    std::string units = "auto"; ///< pick values: auto, lux or W
 };
 
 /// Everything the input callbacks change.
@@ -66,6 +98,7 @@ struct ViewState {
     Bounds bounds;
     bool flat = false, edges = false, false_colour = false, ambient = true;
     bool paused = false, step_once = false, help = false, status = true;
+    bool panels = true;     ///< the Dear ImGui panels (key P), shown with the status line (key O)
     bool highlight = false; ///< outline the last shot's shooter (key L)
     bool inset = false;     ///< the last hemicube's IDs and form factors (key I)
     bool two_sided = false; ///< draw the backs of polygons (key T); default: culled
@@ -81,9 +114,10 @@ ViewState& state_of(GLFWwindow* w) {
 }
 
 void on_key(GLFWwindow* w, int key, int, int action, int) {
-    if (action != GLFW_PRESS && !(action == GLFW_REPEAT && (key == GLFW_KEY_N))) return;
     ViewState& s = state_of(w);
     s.dirty = true;
+    if (ui_wants_keyboard()) return; // typing into a panel
+    if (action != GLFW_PRESS && !(action == GLFW_REPEAT && (key == GLFW_KEY_N))) return;
     switch (key) {
     case GLFW_KEY_ESCAPE:
     case GLFW_KEY_Q:
@@ -137,6 +171,9 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
     case GLFW_KEY_O:
         s.status = !s.status;
         break;
+    case GLFW_KEY_P:
+        s.panels = !s.panels;
+        break;
     case GLFW_KEY_H:
     case GLFW_KEY_F1:
         s.help = !s.help;
@@ -148,7 +185,8 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
 
 void on_mouse_button(GLFWwindow* w, int button, int action, int) {
     ViewState& s = state_of(w);
-    if (action == GLFW_PRESS && s.drag_button < 0) {
+    s.dirty = true;
+    if (action == GLFW_PRESS && s.drag_button < 0 && !ui_wants_mouse()) {
         s.drag_button = button;
         glfwGetCursorPos(w, &s.last_x, &s.last_y);
     } else if (action == GLFW_RELEASE && button == s.drag_button) {
@@ -158,6 +196,7 @@ void on_mouse_button(GLFWwindow* w, int button, int action, int) {
 
 void on_cursor(GLFWwindow* w, double x, double y) {
     ViewState& s = state_of(w);
+    if (kPanels && s.panels && s.status) s.dirty = true; // hovering a panel redraws it
     if (s.drag_button < 0) return;
     int ww = 1, wh = 1;
     glfwGetWindowSize(w, &ww, &wh);
@@ -173,6 +212,8 @@ void on_cursor(GLFWwindow* w, double x, double y) {
 
 void on_scroll(GLFWwindow* w, double, double yoffset) {
     ViewState& s = state_of(w);
+    s.dirty = true;
+    if (ui_wants_mouse()) return;
     s.camera.zoom(yoffset);
     s.dirty = true;
 }
@@ -315,6 +356,12 @@ void validate(const Options& o, const ArgParser& args) {
         (o.screenshot.size() < 4 || o.screenshot.substr(o.screenshot.size() - 4) != ".png"))
         throw InputError("--screenshot " + o.screenshot + ": expected a .png file name");
     if (!std::isfinite(o.exposure)) throw InputError("--exposure must be finite");
+    if (o.units != "auto" && o.units != "lux" && o.units != "W")
+        throw InputError("--units '" + o.units + "' must be auto, lux or W");
+    if (!o.script.empty() &&
+        (!o.screenshot.empty() || args.given("--after-shots") || args.given("--frames")))
+        throw InputError("--script cannot be combined with --screenshot, --after-shots or "
+                         "--frames (use the script's shots and screenshot commands)");
 }
 
 /// Shots and frames per second over the last second or so.
@@ -337,6 +384,66 @@ class Rate {
     double rate_ = 0;
 };
 
+/// Time per frame drawn [ms]: waiting for the solving thread's shot in progress, then
+/// rendering, overlays, panels and the swap.
+class FrameTimes {
+  public:
+    void add(Clock::duration d) {
+        last_ = std::chrono::duration<double, std::milli>(d).count();
+        all_.push_back(last_);
+    }
+    double last_ms() const { return last_; }
+    /// "frame-time: N frames drawn, mean M ms, median D ms, max X ms".
+    std::string summary() const {
+        if (all_.empty()) return "frame-time: no frames drawn";
+        std::vector<double> v = all_;
+        std::sort(v.begin(), v.end());
+        double sum = 0;
+        for (double t : v) sum += t;
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "frame-time: %zu frames drawn, mean %.1f ms, median %.1f ms, max %.1f ms",
+                      v.size(), sum / double(v.size()), v[v.size() / 2], v.back());
+        return text;
+    }
+
+  private:
+    std::vector<double> all_;
+    double last_ = 0;
+};
+
+/// Runs a script command on the solver: shots and edits (the rest is the caller's: pick,
+/// screenshot and quit need the window). Edits throw InputError for an unknown name.
+void run_command(const ScriptCommand& c, SolveThread& solve, bool quiet) {
+    switch (c.kind) {
+    case ScriptCommand::Kind::Shots: {
+        const long before = solve.shots();
+        solve.shoot(c.shots); // on the solving thread; waits
+        auto l = solve.lock();
+        const Solver& solver = solve.solver();
+        if (!quiet)
+            std::fprintf(stderr, "%s: shots %ld: %ld shots done (%ld in all), error bound %.3e%s\n",
+                         kTool, c.shots, solver.shots() - before, solver.shots(),
+                         solver.error_bound(), solve.stopped() ? " (solver stopped)" : "");
+        break;
+    }
+    case ScriptCommand::Kind::Luminaire: {
+        auto l = solve.lock();
+        solve.solver().set_luminaire_multiplier(c.name, c.multiplier);
+        solve.edited();
+        break;
+    }
+    case ScriptCommand::Kind::Reflectance: {
+        auto l = solve.lock();
+        solve.solver().set_reflectance(c.name, c.rho);
+        solve.edited();
+        break;
+    }
+    default:
+        break;
+    }
+}
+
 int run(int argc, char** argv) {
     Options o;
     SolverOptions so;
@@ -345,7 +452,16 @@ int run(int argc, char** argv) {
     ArgParser args(kTool, "hemirad-view SCENE [options]",
                    "Opens a window on a scene, solves it progressively between frames and\n"
                    "shows the solution as it converges. Press H in the window for the keys.\n"
-                   "With --screenshot, --after-shots or --frames it saves a frame and exits.");
+                   "With --screenshot, --after-shots or --frames it saves a frame and exits.\n"
+                   "With --script FILE it runs FILE's commands, one a line, drawing the window\n"
+                   "after each, and exits at the end (the solver shoots only on 'shots'):\n" +
+                       std::string(kScriptHelp) +
+                       (kPanels ? "\nPanels (Dear ImGui; key P): luminaires (on/off, dimmer), "
+                                  "surface groups\n(reflectance, E_avg/E_min/E_max), the solver's "
+                                  "progress and error bound,\nexposure and false colour; each "
+                                  "edit re-solves incrementally."
+                                : "\nThis build has no panels: Dear ImGui (libimgui-dev) was "
+                                  "not found at configure time."));
     args.positional(
         "SCENE", &o.scene,
         std::string("OBJ or glTF (.gltf, .glb) file, SCENE.json (OBJ or glTF files, luminaires, "
@@ -354,7 +470,9 @@ int run(int argc, char** argv) {
     args.section("window");
     args.option("--width", &o.width, "W", "window width [pixels]");
     args.option("--height", &o.height, "H", "window height [pixels]");
-    args.option("--budget", &o.budget_ms, "MS", "solving time per frame (at least one shot)");
+    args.option("--budget", &o.budget_ms, "MS",
+                "while solving (on its own thread), a frame at most every MS, and after at "
+                "least as long as the last frame took (the solver waits while one is drawn)");
     args.option("--camera", &o.camera, "E,T,U,FOV",
                 "eye x,y,z, target x,y,z, up x,y,z, vertical fov [deg] (default: the scene's)");
     args.flag("--no-ambient", &o.no_ambient, "start with the ambient term off (key B)");
@@ -364,7 +482,11 @@ int run(int argc, char** argv) {
               "start with the backs of polygons drawn (black) instead of culled (key T)");
     args.flag("--false-colour", &o.false_colour, "start with false-colour irradiance (key C)");
     args.option("--exposure", &o.exposure, "STOPS", "start exposure (keys + and -)");
-    args.flag("--no-overlay", &o.no_overlay, "start with the status line hidden (key O)");
+    args.flag("--no-overlay", &o.no_overlay,
+              "start with the status line and the panels hidden (key O)");
+    args.flag("--no-panels", &o.no_panels,
+              kPanels ? "start with the Dear ImGui panels hidden (key P)"
+                      : "no effect: this build has no panels (no Dear ImGui at configure time)");
     args.flag("--highlight", &o.highlight, "start with the last shooter outlined (key L)");
     args.flag("--inset", &o.inset, "start with the last hemicube shown as an inset (key I)");
     args.flag("--paused", &o.paused, "start paused (Space resumes, N steps)");
@@ -375,6 +497,12 @@ int run(int argc, char** argv) {
     args.option("--after-shots", &o.after_shots, "N",
                 "... once N shots are done (solving stops there)");
     args.option("--frames", &o.frames, "K", "... at frame K (without --screenshot: exit)");
+    args.option("--script", &o.script, "FILE",
+                "run FILE's commands (above), one a line; pick lines and, at the end, a "
+                "'frame-time:' summary (drawing time per frame) go to standard output");
+    args.option("--units", &o.units, "auto|lux|W",
+                "pick values in lux (scene in metres) or W/unit^2; auto: lux when the scene "
+                "has luminaires (their photometry is in metres)");
     args.flag("--quiet", &o.quiet, "print nothing but errors");
     add_solver_options(args, so);
     add_scene_options(args, builtin, obj);
@@ -382,11 +510,17 @@ int run(int argc, char** argv) {
     validate(o, args);
     std::optional<Camera> user_camera;
     if (!o.camera.empty()) user_camera = parse_camera(o.camera);
-    const bool scripted = !o.screenshot.empty() || o.after_shots >= 0 || o.frames > 0;
+    const bool script_mode = !o.script.empty();
+    const bool scripted =
+        !o.screenshot.empty() || o.after_shots >= 0 || o.frames > 0 || script_mode;
 
-    // Load the scene before opening a window: a bad scene is an error message, not a window.
-    const Scene scene = load_scene(o.scene, builtin, obj);
+    // Load the scene and the script before opening a window: bad input is an error message,
+    // not a window. The scene is not const: the script's edits change its photometry.
+    Scene scene = load_scene(o.scene, builtin, obj);
     print_scene_warnings(kTool, scene, o.quiet);
+    const std::vector<ScriptCommand> script =
+        script_mode ? read_script(o.script) : std::vector<ScriptCommand>{};
+    const bool lux = o.units == "lux" || (o.units == "auto" && !scene.luminaires.empty());
 
     glfwSetErrorCallback(on_glfw_error);
     if (!glfwInit())
@@ -420,8 +554,17 @@ int run(int argc, char** argv) {
 
     // GL objects (provider, renderer, overlay) live in this scope, inside the window's life.
     {
-        so.provider.gpu.use_current_context = true;
-        Solver solver(scene, so);
+        // The solver shoots on its own thread, in the GL context of a hidden window (created
+        // here: GLFW creates windows on the main thread only); destroyed after the thread.
+        glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+        GLFWwindow* solver_window =
+            glfwCreateWindow(16, 16, "hemirad-view: solver", nullptr, nullptr);
+        if (!solver_window)
+            throw RuntimeError("no OpenGL 4.5 core context for the solving thread: " +
+                               g_glfw_error);
+        WindowDestroy destroy_solver_window{solver_window};
+        SolveThread solve(solver_window, scene, so);
+        Solver& solver = solve.solver(); // only under solve.lock() once the worker runs
         SolutionRenderer renderer(scene);
         Overlay overlay;
         SceneTarget target;
@@ -441,6 +584,7 @@ int run(int argc, char** argv) {
         s.ambient = !o.no_ambient;
         s.paused = o.paused;
         s.status = !o.no_overlay;
+        s.panels = !o.no_panels;
         s.exposure = o.exposure;
         s.help = o.show_help;
         s.highlight = o.highlight;
@@ -454,59 +598,130 @@ int run(int argc, char** argv) {
         glfwSetCursorPosCallback(window, on_cursor);
         glfwSetScrollCallback(window, on_scroll);
         glfwSetFramebufferSizeCallback(window, on_resize);
+#if HEMIRAD_VIEWER_PANELS
+        // After the viewer's callbacks: ImGui's GLFW backend chains them.
+        Panels panels(window, scene);
+#endif
 
-        bool running = true; // the solver has not stopped
+        bool reported_stop = false; // the solver's stop was printed
+        long drawn_shots = -1;      // shots in the last frame drawn
+        long rate_shots = 0;        // shots counted by shot_rate
+        auto last_frame = Clock::now();
         long frames = 0;
+        std::size_t next_command = 0;   // in `script`
+        std::string pending_screenshot; // a script's screenshot, taken after this frame
+        bool quit = false;              // the script ended
+        std::optional<Picker> picker;   // built on the first pick (a BVH of the scene)
+        FrameTimes frame_times;
         Rate shot_rate, frame_rate;
         auto last = Clock::now();
-        const auto budget = std::chrono::duration<double, std::milli>(o.budget_ms);
+        const double frame_interval = o.budget_ms / 1000; // while solving [s]
         // Ctrl-C in the terminal closes the window as the close button does.
         signal(SIGINT, on_signal);
         signal(SIGTERM, on_signal);
         while (!glfwWindowShouldClose(window) && !g_interrupted) {
-            const bool shot_cap = o.after_shots >= 0 && solver.shots() >= o.after_shots;
-            const bool solving = running && !shot_cap && (!s.paused || s.step_once);
-            // Idle (paused, converged, minimised): wait for input instead of spinning.
-            if (!solving && !s.dirty && !scripted)
-                glfwWaitEventsTimeout(0.25);
-            else
+            solve.check(); // an error on the solving thread ends the viewer
+            // The solving thread's orders (a script gives its own, by command).
+            if (!script_mode) {
+                if (s.step_once) {
+                    solve.shoot(1);
+                    s.step_once = false;
+                    s.dirty = true;
+                } else if (s.paused) {
+                    solve.pause();
+                } else {
+                    solve.run(o.after_shots >= 0 ? o.after_shots : LONG_MAX);
+                }
+            }
+            const bool solving = solve.busy();
+            // While solving, a frame is due `gap` after the last one ended: --budget, and at
+            // least as long as that frame took, so that the solving thread (which waits while a
+            // frame is drawn) gets at least half the time.
+            const double gap = std::max(frame_interval, frame_times.last_ms() / 1000);
+            const double since_frame =
+                std::chrono::duration<double>(Clock::now() - last_frame).count();
+            // Idle (paused, converged, minimised): wait for input instead of spinning; while
+            // solving, for input or until the next frame is due.
+            if (scripted)
                 glfwPollEvents();
+            else if (s.dirty)
+                glfwPollEvents();
+            else if (solving) // until the frame is due, then in steps of 5 ms for a new shot
+                glfwWaitEventsTimeout(std::max(gap - since_frame, 0.005));
+            else
+                glfwWaitEventsTimeout(0.25);
             const auto now = Clock::now();
             fly(window, s, std::chrono::duration<double>(now - last).count());
             last = now;
 
-            // Solve for the frame's budget: at least one shot while not converged.
-            long shots_before = solver.shots();
-            if (running && !shot_cap && (!s.paused || s.step_once)) {
-                const auto t0 = Clock::now();
-                do {
-                    if (!solver.step()) {
-                        running = false;
-                        if (!o.quiet)
-                            std::fprintf(stderr,
-                                         "%s: %s after %ld shots in %.2f s: error bound "
-                                         "%.3e\n",
-                                         kTool, to_string(solver.stop_reason()), solver.shots(),
-                                         solver.seconds(), solver.error_bound());
-                        break;
+            if (script_mode) {
+                if (next_command < script.size()) {
+                    const ScriptCommand& c = script[next_command++];
+                    // An edit's or a pick's bad value (an unknown name): at the script's line.
+                    try {
+                        run_command(c, solve, o.quiet);
+                        if (c.kind == ScriptCommand::Kind::Pick) {
+                            auto l = solve.lock();
+                            int ww = 1, wh = 1;
+                            glfwGetWindowSize(window, &ww, &wh);
+                            if (c.x >= ww || c.y >= wh)
+                                throw InputError("pixel " + std::to_string(c.x) + " " +
+                                                 std::to_string(c.y) + " is outside the " +
+                                                 std::to_string(ww) + "x" + std::to_string(wh) +
+                                                 " window");
+                            if (!picker) picker.emplace(scene);
+                            const PickResult r = picker->pick(solver.solution(), s.camera.camera(),
+                                                              ww, wh, c.x, c.y);
+                            std::printf("%s\n", pick_line(c.x, c.y, r, lux).c_str());
+                            std::fflush(stdout);
+                        }
+                    } catch (const InputError& e) {
+                        throw InputError(o.script, c.line, e.what());
                     }
-                    if (s.step_once || (o.after_shots >= 0 && solver.shots() >= o.after_shots))
-                        break;
-                } while (Clock::now() - t0 < budget);
-                s.step_once = false;
+                    if (c.kind == ScriptCommand::Kind::Screenshot) pending_screenshot = c.name;
+                    if (c.kind == ScriptCommand::Kind::Quit) quit = true;
+                } else {
+                    quit = true;
+                }
                 s.dirty = true;
             }
-            shot_rate.add(solver.shots() - shots_before, Clock::now());
+
+            const long shots_now = solve.shots();
+            shot_rate.add(shots_now - rate_shots, Clock::now());
+            rate_shots = shots_now;
+            // New shots: draw them, when the next frame is due (a scripted run draws as soon as
+            // there are new shots, and whenever the solver is idle).
+            const bool new_shots = shots_now != drawn_shots;
+            const bool due =
+                std::chrono::duration<double>(Clock::now() - last_frame).count() >= gap;
+            if (new_shots && (due || scripted)) s.dirty = true;
+            if (scripted && !solve.busy()) s.dirty = true;
+            if (scripted && !s.dirty) { // solving, no new shot yet
+                std::this_thread::sleep_for(std::chrono::milliseconds(2));
+                continue;
+            }
 
             glfwGetFramebufferSize(window, &fbw, &fbh);
             s.fb_width = fbw;
             s.fb_height = fbh;
             if (fbw <= 0 || fbh <= 0) { // minimised: nothing to draw into
-                if (!running || s.paused) glfwWaitEventsTimeout(0.1);
+                if (quit) break;
+                if (!solving) glfwWaitEventsTimeout(0.1);
                 continue;
             }
-            if (!s.dirty && !scripted) continue;
+            if (!s.dirty) continue;
             s.dirty = false;
+            const auto draw_start = Clock::now();
+            // The solution is read (and edited by the panels) under the lock: the solving
+            // thread finishes its shot in progress first.
+            auto solver_lock = solve.lock();
+            const bool running = !solve.stopped();
+            drawn_shots = solver.shots();
+            if (!running && !reported_stop && !o.quiet)
+                std::fprintf(stderr, "%s: %s after %ld shots in %.2f s: error bound %.3e\n", kTool,
+                             to_string(solver.stop_reason()), solver.shots(), solver.seconds(),
+                             solver.error_bound());
+            reported_stop = !running;
 
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
             glViewport(0, 0, fbw, fbh);
@@ -556,10 +771,10 @@ int run(int argc, char** argv) {
                 char line[512];
                 std::snprintf(
                     line, sizeof line,
-                    "shots %ld  unshot %.2e  bound %.2e  %.1f shots/s  %.0f FPS  "
+                    "shots %ld  unshot %.2e  bound %.2e  %.1f shots/s  %.0f FPS  draw %.0f ms  "
                     "exp %+.1f%s%s%s",
                     solver.shots(), solver.unshot_fraction(), solver.error_bound(),
-                    shot_rate.rate(), frame_rate.rate(), s.exposure,
+                    shot_rate.rate(), frame_rate.rate(), frame_times.last_ms(), s.exposure,
                     s.ambient && !s.false_colour ? "  ambient" : "", s.paused ? "  [paused]" : "",
                     running ? ""
                             : (std::string("  [") + to_string(solver.stop_reason()) + "]").c_str());
@@ -600,7 +815,31 @@ int run(int argc, char** argv) {
             else if (s.status && !scripted)
                 overlay.blit(text_panel("H: help"), 4, 4, fbw, fbh);
 
+#if HEMIRAD_VIEWER_PANELS
+            if (s.panels && s.status) {
+                const PanelView pv{&s.false_colour, &s.ambient, &s.paused, &s.exposure};
+                const PanelStats ps{shot_rate.rate(), frame_times.last_ms(), lux};
+                if (panels.draw(solver, pv, ps)) solve.edited(); // an edit: solve again
+                if (ui_wants_mouse()) s.dirty = true;
+            }
+#endif
             ++frames;
+            if (script_mode) {
+                if (!pending_screenshot.empty()) {
+                    glFinish();
+                    write_png(pending_screenshot, read_back_buffer(fbw, fbh));
+                    if (!o.quiet)
+                        std::fprintf(stderr, "%s: wrote %s (%dx%d) after %ld shots\n", kTool,
+                                     pending_screenshot.c_str(), fbw, fbh, solver.shots());
+                    pending_screenshot.clear();
+                }
+                if (quit) break;
+                solve.release(solver_lock);
+                glfwSwapBuffers(window);
+                last_frame = Clock::now();
+                frame_times.add(last_frame - draw_start);
+                continue;
+            }
             const bool shots_done =
                 o.after_shots < 0 || solver.shots() >= o.after_shots || !running;
             const bool frames_done = o.frames <= 0 || frames >= o.frames;
@@ -615,8 +854,17 @@ int run(int argc, char** argv) {
                 }
                 break;
             }
+            solve.release(solver_lock);
             glfwSwapBuffers(window);
+            last_frame = Clock::now();
+            frame_times.add(last_frame - draw_start);
         }
+        // A script's summary of the drawing (frames drawn between its commands) on standard
+        // output; otherwise on standard error.
+        if (script_mode)
+            std::printf("%s\n", frame_times.summary().c_str());
+        else if (!o.quiet)
+            std::fprintf(stderr, "%s: %s\n", kTool, frame_times.summary().c_str());
     }
     return 0;
 }
