@@ -83,7 +83,10 @@ dvec3 leaf(const Scene& scene, const Hierarchy& h, const Point& pt) {
 } // namespace
 
 // A black 4 m floor under each sky (10000 lx): every gathered point takes E_h/683 (0.3 %:
-// 1024 stratified jittered rays over a smooth sky, measured within 0.1 %); every leaf E_h/683
+// 1024 stratified jittered rays over a smooth sky, measured within 0.1 %; 0.5 % under a
+// circumsolar peak: the clear sky's reads +0.39 % at the centre with the horizon blend, a
+// sample of the estimator's noise there, not a bias: sky_test's 16 seeds average to 0.1 %);
+// every leaf E_h/683
 // within 0.5 % under the overcast and uniform skies, 4 % under the clear and intermediate ones
 // (256 rays from jittered points of the leaf; their circumsolar peak, up to 11 x the mean,
 // falls in a few strata: measured up to 2.8 % at a corner, whose read-out extrapolates two
@@ -108,7 +111,8 @@ TEST_F(SkyLight, UnobstructedFloorTakesEh) {
         for (std::size_t k = 0; k < pts.size(); ++k) {
             EXPECT_NEAR(leaf(scene, h, pts[k]).x, E, (peaked ? 0.04 : 0.005) * E)
                 << sky_model_name(m) << " " << pts[k].name;
-            EXPECT_NEAR(g[k].direct.x, E, 3e-3 * E) << sky_model_name(m) << " " << pts[k].name;
+            EXPECT_NEAR(g[k].direct.x, E, (peaked ? 5e-3 : 3e-3) * E)
+                << sky_model_name(m) << " " << pts[k].name;
             EXPECT_EQ(g[k].indirect.x, 0.0) << pts[k].name;
         }
     }
@@ -124,7 +128,7 @@ TEST_F(SkyLight, VerticalPlateTakesClosedForms) {
          {std::pair{SkyModel::Uniform, 0.5}, std::pair{SkyModel::CieOvercast, overcast}}) {
         Scene scene = empty_scene(0.0);
         quad(scene, {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}}, {1, 0, 0}, 0);
-        scene.sky = make_sky(m, 10000, 0.3, {0, 1, 0}, std::nullopt);
+        scene.sky = make_sky(m, 10000, 0.3, {0, 1, 0}, std::nullopt, false); // sharp horizon
         Solver s(scene, gpu_options());
         while (s.step()) {}
         const double E = (ratio + 0.15) * 10000 / 683.0;

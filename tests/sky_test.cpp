@@ -106,11 +106,11 @@ TEST(SkyModels, NamesRoundTrip) {
 // the ground rho_g (E_h + E_n sin alt) / pi.
 TEST(SkyModels, ClosedFormLuminances) {
     const Sun sun = sun_at(30, 180, 60000);
-    const Sky o = make_sky(SkyModel::CieOvercast, 10000, 0.2, {0, 1, 0}, sun);
+    const Sky o = make_sky(SkyModel::CieOvercast, 10000, 0.2, {0, 1, 0}, sun, false);
     EXPECT_NEAR(o.luminance({0, 1, 0}), 9 * 10000 / (7 * kPi), 1e-9);
     EXPECT_NEAR(o.luminance(glm::normalize(dvec3(1, 1e-9, 0))), 3 * 10000 / (7 * kPi), 1e-5);
     EXPECT_NEAR(o.luminance({0, -1, 0}), 0.2 * (10000 + 30000) / kPi, 1e-9);
-    const Sky u = make_sky(SkyModel::Uniform, 5000, 0, {0, 1, 0}, std::nullopt);
+    const Sky u = make_sky(SkyModel::Uniform, 5000, 0, {0, 1, 0}, std::nullopt, false);
     EXPECT_NEAR(u.luminance(glm::normalize(dvec3(1, 2, 3))), 5000 / kPi, 1e-9);
     EXPECT_EQ(u.luminance({0, -1, 0}), 0.0);
     EXPECT_NEAR(u.radiance({0, 1, 0}), 5000 / kPi / kLumensPerWatt, 1e-12);
@@ -137,7 +137,7 @@ TEST(SkyModels, HorizontalIlluminanceIsEh) {
 TEST(SkyModels, ClearSkyRelativeLuminance) {
     const SkyFrame f;
     const Sun sun = sun_at(40, 180, 0);
-    const Sky s = make_sky(SkyModel::CieClear, 10000, 0, f.up, sun);
+    const Sky s = make_sky(SkyModel::CieClear, 10000, 0, f.up, sun, false); // CIE as written
     const auto phi = [](double z) { return 1 - std::exp(-0.32 / std::cos(z)); };
     const auto fx = [](double chi) {
         return 1 + 10 * (std::exp(-3 * chi) - std::exp(-3 * kPi / 2)) +
@@ -154,10 +154,39 @@ TEST(SkyModels, ClearSkyRelativeLuminance) {
 // (uniform too); overcast E_v = 0.396177 E_h (kOvercastVertical) plus rho_g E_h / 2.
 TEST(SkyModels, VerticalIlluminanceClosedForms) {
     const dvec3 east(1, 0, 0);
-    const Sky u = make_sky(SkyModel::Uniform, 10000, 0.3, {0, 1, 0}, std::nullopt);
+    const Sky u = make_sky(SkyModel::Uniform, 10000, 0.3, {0, 1, 0}, std::nullopt, false);
     EXPECT_NEAR(illuminance_on(u, east), 5000 + 0.3 * 5000, 0.1);
-    const Sky o = make_sky(SkyModel::CieOvercast, 10000, 0.3, {0, 1, 0}, std::nullopt);
+    const Sky o = make_sky(SkyModel::CieOvercast, 10000, 0.3, {0, 1, 0}, std::nullopt, false);
     EXPECT_NEAR(illuminance_on(o, east), 10000 * kOvercastVertical + 0.3 * 5000, 0.1);
+}
+
+// The default horizon blend against Radiance's skybright.cal written out here: L = wmean((cos Z
+// + 1.01)^10, sky, (cos Z + 1.01)^-10, ground), the sky renormalised to E_h (the blend takes
+// 0.226 % of an overcast sky's horizontal illuminance under a black ground: the midpoint rule
+// of illuminance_on gives it to 1e-5). The reference path tracer blends in its own code: a
+// horizontal point under the blended sky reads E_h there too (SkyReference below).
+TEST(SkyModels, HorizonBlendAsRadiance) {
+    const auto wmean = [](double a, double x, double b, double y) {
+        return (a * x + b * y) / (a + b);
+    };
+    const Sky sharp = make_sky(SkyModel::CieOvercast, 10000, 0.2, {0, 1, 0}, std::nullopt, false);
+    const Sky o = make_sky(SkyModel::CieOvercast, 10000, 0.2, {0, 1, 0}, std::nullopt);
+    ASSERT_TRUE(o.horizon_blend);
+    const double Lz = o.scale, Lg = 0.2 * 10000 / kPi;
+    for (double dz : {1.0, 0.5, 0.1, 0.02, 1e-6, -0.005, -0.05, -0.5}) {
+        const dvec3 w = glm::normalize(dvec3(std::sqrt(1 - dz * dz), dz, 0));
+        const double radiance =
+            wmean(std::pow(dz + 1.01, 10), Lz * (1 + 2 * std::max(dz, -0.5)) / 3,
+                  std::pow(dz + 1.01, -10), Lg);
+        EXPECT_NEAR(o.luminance(w), radiance, 1e-9 * radiance) << "cos Z " << dz;
+    }
+    EXPECT_NEAR(illuminance_on(o, {0, 1, 0}), 10000, 0.5);
+    const Sky black = make_sky(SkyModel::CieOvercast, 10000, 0, {0, 1, 0}, std::nullopt);
+    EXPECT_NEAR(black.scale / sharp.scale, 1 / (1 - 0.00226), 2e-5);
+    // At the horizon a black ground leaves 0.55 of the sky's luminance.
+    const double a2 = std::pow(1.01, 20); // (cos Z + 1.01)^10 squared at the horizon
+    EXPECT_NEAR(black.luminance({1, 0, 0}) / (black.scale / 3), a2 / (a2 + 1), 1e-12);
+    EXPECT_NEAR(a2 / (a2 + 1), 0.5496, 1e-4);
 }
 
 // The solver's point estimator (sky_light.h sky_irradiance, as the final gather calls it) at
@@ -192,8 +221,8 @@ TEST(SkySolverEstimator, UnobstructedPointsMatchClosedForms) {
         EXPECT_NEAR(sum / kSeeds, 10000, 10) << sky_model_name(m);
         EXPECT_LE(worst, 50) << sky_model_name(m);
     }
-    const Sky u = make_sky(SkyModel::Uniform, 10000, 0.3, {0, 1, 0}, std::nullopt);
-    const Sky o = make_sky(SkyModel::CieOvercast, 10000, 0.3, {0, 1, 0}, std::nullopt);
+    const Sky u = make_sky(SkyModel::Uniform, 10000, 0.3, {0, 1, 0}, std::nullopt, false);
+    const Sky o = make_sky(SkyModel::CieOvercast, 10000, 0.3, {0, 1, 0}, std::nullopt, false);
     Rng rng(9);
     std::uint64_t rays = 0;
     const double Eu =
@@ -228,7 +257,7 @@ TEST(SkyReference, UnobstructedPointsMatchClosedForms) {
         EXPECT_NEAR(E, 10000, 20 + 4 * sem) << sky_model_name(m);
     }
     const std::vector<Probe> east = {{{0, 0, 0}, {1, 0, 0}}};
-    scene.sky = make_sky(SkyModel::CieOvercast, 10000, 0.3, {0, 1, 0}, std::nullopt);
+    scene.sky = make_sky(SkyModel::CieOvercast, 10000, 0.3, {0, 1, 0}, std::nullopt, false);
     const ReferenceValue v = reference_irradiance(scene, east, ro)[0];
     const double expected = 10000 * kOvercastVertical + 1500;
     EXPECT_NEAR(kLumensPerWatt * v.E.x, expected, 0.002 * expected + 4 * kLumensPerWatt * v.sem.x);

@@ -20,6 +20,15 @@
 // Below the horizon rays see a uniform diffuse ground: L_g = rho_g (E_h + E_n sin(alt)) / pi,
 // the sun's term only when there is a sun above the horizon (as gensky's -g).
 //
+// Horizon blend (default, "horizon_blend": true): as Radiance's skybright.cal, which gensky's
+// skies use, sky and ground meet smoothly: L = (a L_sky + L_g / a) / (a + 1 / a) with
+// a = (cos Z + 1.01)^10, on both sides of the horizon: at the horizon the sky is 0.55 of the
+// model's luminance (with a black ground), 0.87 at 5 degrees, 0.97 at 10, and the ground just
+// below it takes the sky's share. Without it ("horizon_blend": false) the models are the CIE
+// distributions as written, up to a sharp horizon. Either way k normalises the sky's
+// horizontal illuminance to E_h (the blend alone would lower it by 0.23 % under an overcast
+// sky and a black ground; gensky keeps the unblended normalisation).
+//
 // Conventions as for the sun (sun.h): 1 lux = 1/683 W m^-2 per RGB channel, so the radiance is
 // L / 683 [W sr^-1 m^-2] in each channel.
 #pragma once
@@ -51,7 +60,8 @@ struct HEMIRAD_API Sky {
     glm::dvec3 sun{0.0, 1.0, 0.0}; ///< unit direction towards the sun (clear, intermediate)
     /// The sun's horizontal illuminance E_n sin(alt) [lux] for the ground (0: none).
     double sun_horizontal = 0;
-    double scale = 0; ///< k [cd m^-2]: set by normalise()
+    double scale = 0;          ///< k [cd m^-2]: set by normalise()
+    bool horizon_blend = true; ///< sky and ground blended near the horizon (as Radiance)
 
     /// The model's relative luminance shape(w) above the horizon (w unit, w.up > 0).
     double shape(const glm::dvec3& w) const;
@@ -69,6 +79,7 @@ struct HEMIRAD_API Sky {
 /// for overcast and uniform skies) gives its position and the ground's sun term.
 /// Throws InputError when the model needs the sun's position and there is none.
 HEMIRAD_API Sky make_sky(SkyModel model, double illuminance, double ground_reflectance,
-                         const glm::dvec3& up, const std::optional<Sun>& sun);
+                         const glm::dvec3& up, const std::optional<Sun>& sun,
+                         bool horizon_blend = true);
 
 } // namespace hemirad

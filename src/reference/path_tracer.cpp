@@ -93,19 +93,22 @@ double max_channel(const dvec3& v) {
 ///   overcast  (1 + 2 cos Z)/3 (CIE 1955, Moon & Spencer); uniform 1;
 ///   CIE S 011 type 12 (clear) and 7 (intermediate):
 ///     (1 + a e^(b / cos Z)) (1 + c (e^(d chi) - e^(d pi/2)) + e cos^2 chi).
+/// With the horizon blend (Radiance's skybright.cal: wmean((cos Z + 1.01)^10, sky,
+/// (cos Z + 1.01)^-10, ground)) on both sides of the horizon.
 /// Normalised so that integral of L cos Z over the upper hemisphere is E_h, by the midpoint
 /// rule in (Z, azimuth) with weight sin Z cos Z (sky.cpp uses the cosine-weighted square).
 class ReferenceSky {
   public:
     explicit ReferenceSky(const Sky& sky)
-        : model_(sky.model), up_(glm::normalize(sky.up)), sun_(glm::normalize(sky.sun)) {
+        : model_(sky.model), up_(glm::normalize(sky.up)), sun_(glm::normalize(sky.sun)),
+          blend_(sky.horizon_blend) {
         ground_ = sky.ground_reflectance * (sky.illuminance + sky.sun_horizontal) / kPi;
         // An orthonormal frame about the zenith for the quadrature.
         const dvec3 any = std::abs(up_.y) < 0.9 ? dvec3(0, 1, 0) : dvec3(1, 0, 0);
         const dvec3 e1 = glm::normalize(glm::cross(any, up_)), e2 = glm::cross(up_, e1);
         constexpr int kZ = 720, kA = 1440;
         const double dz = (kPi / 2) / kZ, da = 2 * kPi / kA;
-        double integral = 0;
+        double integral = 0, ground = 0; // the sky's and the blended ground's parts
         for (int i = 0; i < kZ; ++i) {
             const double z = (i + 0.5) * dz;
             double ring = 0;
@@ -114,17 +117,31 @@ class ReferenceSky {
                 ring += relative(std::sin(z) * (std::cos(a) * e1 + std::sin(a) * e2) +
                                  std::cos(z) * up_);
             }
-            integral += ring * std::sin(z) * std::cos(z) * dz * da;
+            const double weight = std::sin(z) * std::cos(z) * dz * da;
+            integral += sky_share(std::cos(z)) * ring * weight;
+            ground += (1 - sky_share(std::cos(z))) * kA * weight;
         }
-        scale_ = sky.illuminance > 0 ? sky.illuminance / integral : 0.0;
+        const double sky_part = sky.illuminance - ground_ * ground;
+        scale_ = sky.illuminance > 0 && sky_part > 0 ? sky_part / integral : 0.0;
     }
 
     /// Luminance seen along unit w [cd m^-2].
     double luminance(const dvec3& w) const {
-        return glm::dot(w, up_) > 0 ? scale_ * relative(w) : ground_;
+        const double cz = glm::dot(w, up_);
+        if (!blend_) return cz > 0 ? scale_ * relative(w) : ground_;
+        const double f = sky_share(cz);
+        return f * scale_ * std::max(relative(w), 0.0) + (1 - f) * ground_;
     }
 
   private:
+    /// wmean's weight of the sky: (c + 1.01)^10 / ((c + 1.01)^10 + (c + 1.01)^-10); 1 (above
+    /// the horizon) without the blend.
+    double sky_share(double cz) const {
+        if (!blend_) return cz > 0 ? 1.0 : 0.0;
+        const double up = std::pow(cz + 1.01, 10.0), down = std::pow(cz + 1.01, -10.0);
+        return up / (up + down);
+    }
+
     double relative(const dvec3& w) const {
         const double cz = glm::dot(w, up_);
         const double zenith_angle = std::acos(std::clamp(cz, -1.0, 1.0));
@@ -142,6 +159,7 @@ class ReferenceSky {
 
     SkyModel model_;
     dvec3 up_, sun_;
+    bool blend_ = true;
     double scale_ = 0, ground_ = 0;
 };
 

@@ -283,6 +283,8 @@ void mix_sky(Fnv1a& mix, const std::optional<Sky>& sky) {
     for (const double* v : {&sky->illuminance, &sky->ground_reflectance, &sky->sun_horizontal})
         mix(v, sizeof(double));
     mix(&sky->up, sizeof(dvec3));
+    const char blend = sky->horizon_blend ? 1 : 0;
+    mix(&blend, 1);
     if (sky_needs_sun(sky->model)) mix(&sky->sun, sizeof(dvec3));
 }
 

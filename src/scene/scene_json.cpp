@@ -440,11 +440,11 @@ Sun read_sun(const Reader& r, const json& j, const SkyFrame& frame,
     return sun;
 }
 
-// "sky": "model", "illuminance" (E_h [lux]), "ground_reflectance" (sky.h); the sun's position
-// from the scene's "sun" for the models that need it.
+// "sky": "model", "illuminance" (E_h [lux]), "ground_reflectance", "horizon_blend" (sky.h); the
+// sun's position from the scene's "sun" for the models that need it.
 Sky read_sky(const Reader& r, const json& j, const SkyFrame& frame, const std::optional<Sun>& sun) {
     const std::string at = "/sky";
-    r.only_keys(j, at, {"model", "illuminance", "ground_reflectance"});
+    r.only_keys(j, at, {"model", "illuminance", "ground_reflectance", "horizon_blend"});
     const std::string models = "cie-overcast, cie-clear, cie-intermediate or uniform";
     if (!j.contains("model")) r.fail(at, "the sky needs 'model': " + models);
     SkyModel model{};
@@ -464,11 +464,18 @@ Sky read_sky(const Reader& r, const json& j, const SkyFrame& frame, const std::o
             r.fail(at + "/ground_reflectance",
                    "must be in [0, 1], got " + Reader::dump(j["ground_reflectance"]));
     }
+    bool blend = true;
+    if (j.contains("horizon_blend")) {
+        if (!j["horizon_blend"].is_boolean())
+            r.fail(at + "/horizon_blend",
+                   "expected true or false, got " + Reader::dump(j["horizon_blend"]));
+        blend = j["horizon_blend"].get<bool>();
+    }
     if (sky_needs_sun(model) && !sun)
         r.fail(at + "/model", "the " + name +
                                   " sky needs the sun's position: add \"sun\" (its "
                                   "\"illuminance\" may be 0 for the sky alone)");
-    return make_sky(model, e_h, rho_g, frame.up, sun);
+    return make_sky(model, e_h, rho_g, frame.up, sun, blend);
 }
 
 } // namespace

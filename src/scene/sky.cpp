@@ -35,6 +35,13 @@ double cie_general(const CieParameters& p, double cos_z, double chi) {
 /// sqrt(u1) sin 2 pi u2, sqrt(1 - u1)) (the map of core/sampling.h cosine_direction).
 constexpr int kNormaliseU1 = 512, kNormaliseU2 = 1024;
 
+/// The sky's weight in the horizon blend (sky.h; Radiance's skybright.cal): a / (a + 1/a) with
+/// a = (cos Z + 1.01)^10; the ground has the rest.
+double sky_weight(double cos_z) {
+    const double a2 = std::pow(cos_z + 1.01, 20);
+    return a2 / (a2 + 1);
+}
+
 } // namespace
 
 const char* sky_model_name(SkyModel m) {
@@ -83,7 +90,34 @@ double Sky::shape(const glm::dvec3& w) const {
 }
 
 void Sky::normalise() {
-    double integral = 0; // of shape cos Z over the hemisphere, up to the factor pi
+    double integral = 0;        // of shape cos Z over the hemisphere, up to the factor pi
+    double ground_integral = 0; // of the ground's weight cos Z there (the blend), the same
+    if (horizon_blend) {
+        // Midpoint rule in the cosine-weighted square, as below.
+        glm::dvec3 t = glm::abs(up.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+        t = glm::normalize(t - glm::dot(t, up) * up);
+        const glm::dvec3 b = glm::cross(up, t);
+        const bool symmetric = !sky_needs_sun(model); // no azimuth to integrate over
+        const int n2 = symmetric ? 1 : kNormaliseU2;
+        double sum = 0, ground = 0;
+        for (int i = 0; i < kNormaliseU1; ++i) {
+            const double u1 = (i + 0.5) / kNormaliseU1;
+            const double r = std::sqrt(u1), z = std::sqrt(1 - u1);
+            const double w = sky_weight(z);
+            double row = 0;
+            for (int j = 0; j < n2; ++j) {
+                const double phi = 2 * kPi * (j + 0.5) / n2;
+                row += shape(r * std::cos(phi) * t + r * std::sin(phi) * b + z * up);
+            }
+            sum += w * row / n2;
+            ground += 1 - w;
+        }
+        integral = sum / kNormaliseU1;
+        ground_integral = ground / kNormaliseU1;
+        const double sky_part = illuminance / kPi - ground_luminance() * ground_integral;
+        scale = illuminance > 0 && sky_part > 0 ? sky_part / integral : 0.0;
+        return;
+    }
     switch (model) {
     case SkyModel::CieOvercast:
         integral = 7.0 / 9.0;
@@ -118,7 +152,10 @@ double Sky::ground_luminance() const {
 }
 
 double Sky::luminance(const glm::dvec3& w) const {
-    return glm::dot(w, up) > 0 ? scale * shape(w) : ground_luminance();
+    const double cos_z = glm::dot(w, up);
+    if (!horizon_blend) return cos_z > 0 ? scale * shape(w) : ground_luminance();
+    const double sky_w = sky_weight(cos_z);
+    return sky_w * scale * std::max(shape(w), 0.0) + (1 - sky_w) * ground_luminance();
 }
 
 double Sky::radiance(const glm::dvec3& w) const {
@@ -126,9 +163,10 @@ double Sky::radiance(const glm::dvec3& w) const {
 }
 
 Sky make_sky(SkyModel model, double illuminance, double ground_reflectance, const glm::dvec3& up,
-             const std::optional<Sun>& sun) {
+             const std::optional<Sun>& sun, bool horizon_blend) {
     Sky s;
     s.model = model;
+    s.horizon_blend = horizon_blend;
     s.illuminance = illuminance;
     s.ground_reflectance = ground_reflectance;
     s.up = glm::normalize(up);

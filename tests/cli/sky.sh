@@ -16,15 +16,23 @@ scene() { # scene FILE SKY [EXTRA]: a floor under that sky
 
 scene ok.json '{"model": "cie-overcast", "illuminance": 10000, "ground_reflectance": 0.2}'
 "$HEMIRAD" scene ok.json > out.txt
-grep -q 'sky        cie-overcast, E_h 10000 lx .*zenith 4092.5.* cd/m2, ground reflectance 0.2' \
+grep -q 'sky        cie-overcast, E_h 10000 lx .*zenith 4098.3.* cd/m2, ground reflectance 0.2 .*horizon blended' \
     out.txt || { echo "sky not listed: $(cat out.txt)"; exit 1; }
 "$HEMIRAD" scene ok.json --json > ok_scene.json
 python3 - <<'PY'
 import json, math
 s = json.load(open("ok_scene.json"))["sky"]
-assert s["model"] == "cie-overcast" and s["illuminance"] == 10000, s
-assert abs(s["zenith_luminance"] - 9 * 10000 / (7 * math.pi)) < 1e-6, s
+assert s["model"] == "cie-overcast" and s["illuminance"] == 10000 and s["horizon_blend"], s
+# Blended with the ground near the horizon (as Radiance): renormalised, a little brighter.
+assert 1 < s["zenith_luminance"] / (9 * 10000 / (7 * math.pi)) < 1.003, s
 assert abs(s["ground_luminance"] - 0.2 * 10000 / math.pi) < 1e-6, s
+PY
+scene sharp.json '{"model": "cie-overcast", "illuminance": 10000, "horizon_blend": false}'
+"$HEMIRAD" scene sharp.json --json > sharp_scene.json
+python3 - <<'PY'
+import json, math
+s = json.load(open("sharp_scene.json"))["sky"]
+assert not s["horizon_blend"] and abs(s["zenith_luminance"] - 9 * 10000 / (7 * math.pi)) < 1e-6, s
 PY
 
 fails() { # fails SKY KEY: loading a floor under SKY fails naming KEY at line 3
@@ -40,6 +48,7 @@ fails '{"model": "uniform", "illuminance": "nan"}' 'sky.illuminance'
 fails '{"model": "uniform", "illuminance": 1, "ground_reflectance": 1.5}' 'sky.ground_reflectance'
 fails '{"model": "cie-clear", "illuminance": 1}' 'sky.model'
 fails '{"model": "uniform", "lux": 1}' 'sky.lux'
+fails '{"model": "uniform", "illuminance": 1, "horizon_blend": "yes"}' 'sky.horizon_blend'
 
 # --daylight-factor: no sky, an error; with one, DF columns and the report's DF block.
 printf '0.5,0,0.5,0,1,0\n0.5,1,0.5,0,1,0\n' > probes.csv

@@ -131,6 +131,7 @@ int cmd_scene(int argc, char** argv) {
             o["ground_reflectance"] = scene.sky->ground_reflectance;
             o["zenith_luminance"] = scene.sky->luminance(scene.sky->up);
             o["ground_luminance"] = scene.sky->ground_luminance();
+            o["horizon_blend"] = scene.sky->horizon_blend;
             j["sky"] = o;
         }
         Json cams = Json::array();
@@ -183,9 +184,9 @@ int cmd_scene(int argc, char** argv) {
     if (scene.sky) {
         const Sky& k = *scene.sky;
         std::printf("sky        %s, E_h %.6g lx (horizontal, sky alone), zenith %.6g cd/m2, "
-                    "ground reflectance %.3g (%.6g cd/m2)\n",
+                    "ground reflectance %.3g (%.6g cd/m2), horizon %s\n",
                     sky_model_name(k.model), k.illuminance, k.luminance(k.up), k.ground_reflectance,
-                    k.ground_luminance());
+                    k.ground_luminance(), k.horizon_blend ? "blended (as Radiance)" : "sharp");
     }
     return 0;
 }
