@@ -318,7 +318,7 @@ class HemicubeProvider final : public FormFactorProvider {
             t_read += since(t0);
             t0 = Clock::now();
             const gpu::HemicubeFrame frame = gpu::hemicube_frame(sides[k]);
-            gpu::fill_cracks(*scene_, layout, frame, buffers[k]->data(), s.centre);
+            gpu::fill_cracks(*scene_, layout, frame, buffers[k]->data(), s.centre, sphere_ids_[k]);
             const double d2 = 4.0 / (double(layout.res) * layout.res); // pixel area at 1
             const std::vector<float>& px = *buffers[k];
             for (int f = 0; f < 5; ++f) {
@@ -356,7 +356,7 @@ class HemicubeProvider final : public FormFactorProvider {
         std::optional<gpu::HemicubeVisibility> vis[2];
         for (int k = s.front_only ? 1 : 0; k < 2; ++k) {
             vis[k].emplace(*scene_, layout, gpu::hemicube_frame(sides[k]), buffers[k]->data(),
-                           s.centre);
+                           s.centre, sphere_ids_[k].data());
             vis_[k] = &*vis[k];
             if (mode_ == Mode::Hybrid) mark_partial(*vis[k], buffers[k]->data());
         }
@@ -480,7 +480,7 @@ class HemicubeProvider final : public FormFactorProvider {
                 std::vector<Link>& links) {
         touched_.clear();
         const gpu::HemicubeFrame frame = gpu::hemicube_frame(shooter);
-        gpu::fill_cracks(*scene_, layout, frame, pixels_.data(), shooter.geometry.centre);
+        gpu::fill_cracks(*scene_, layout, frame, pixels_.data(), shooter.geometry.centre, ids_);
         double backface = 0;
         const std::size_t n = std::size_t(layout.width) * layout.height;
         for (std::size_t i = 0; i < n; ++i) {
@@ -493,7 +493,7 @@ class HemicubeProvider final : public FormFactorProvider {
         }
         backface_ = backface;
         const gpu::HemicubeVisibility vis(*scene_, layout, frame, pixels_.data(),
-                                          shooter.geometry.centre);
+                                          shooter.geometry.centre, ids_.data());
         vis_[0] = vis_[1] = &vis;
         sphere_axis_ = dvec3(0.0);
         if (mode_ == Mode::Hybrid) mark_partial(vis, pixels_.data());
@@ -750,6 +750,8 @@ class HemicubeProvider final : public FormFactorProvider {
     dvec3 sphere_centre_{0.0}, sphere_axis_{0.0};
     std::vector<std::uint32_t> partial_; ///< per node, stamp_: a silhouette crosses it
     std::array<std::vector<std::size_t>, 5> edge_pixels_; ///< mark_partial: per face
+    std::vector<float> ids_;                              ///< pixels_'s IDs (fill_cracks)
+    std::array<std::vector<float>, 2> sphere_ids_;        ///< the same for a point's two sides
     std::vector<dvec3> centre_;                           ///< per polygon, its level-0 centre
     const std::vector<std::uint32_t>* hidden_ = nullptr;  ///< during shoot_cluster(): members
     double near_fraction_ = 0;

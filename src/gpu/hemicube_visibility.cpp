@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <vector>
 
 #include "core/parallel.h"
 
@@ -58,8 +59,9 @@ dvec3 pixel_ray(const HemicubeLayout& L, const HemicubeFrame& frame, int f, int 
 } // namespace
 
 std::size_t fill_cracks(const Scene& scene, const HemicubeLayout& L, const HemicubeFrame& frame,
-                        float* rgba, const dvec3& eye) {
+                        float* rgba, const dvec3& eye, std::vector<float>& ids) {
     const double pixel = 2.0 / L.res; // pixel side at unit distance along the face axis
+    ids.resize(std::size_t(L.width) * std::size_t(L.height));
     // The faces are apart in the image and a pixel takes only its own face's values: each
     // face on its own thread gives what one thread would.
     std::array<std::size_t, 5> filled_in{};
@@ -70,6 +72,10 @@ std::size_t fill_cracks(const Scene& scene, const HemicubeLayout& L, const Hemic
         const auto at = [&](int i, int j) {
             return std::size_t(face.y + j) * std::size_t(L.width) + std::size_t(face.x + i);
         };
+        // The IDs apart, 4 bytes a pixel: the searches compare neighbours' IDs in a quarter
+        // of the memory.
+        for (int j = 0; j < face.h; ++j)
+            for (int i = 0; i < face.w; ++i) ids[at(i, j)] = rgba[4 * at(i, j) + 2];
         // Pixel a = (i, j) shows P, its neighbour b shows Q: if the ray to the point a shows,
         // nudged a hundredth of a pixel into P, crosses Q (a ray that meets P on an edge
         // shared with nearer polygons, a face meeting the floor from below hit on the meeting
@@ -91,18 +97,19 @@ std::size_t fill_cracks(const Scene& scene, const HemicubeLayout& L, const Hemic
             const double tq = plane_hit(Q, eye, d);
             if (!(tq > 0 && tq < 1 - 1e-6) || !within(Q, eye + tq * d, tol)) return;
             for (int c = 0; c < 4; ++c) rgba[4 * a + c] = rgba[4 * b + c];
+            ids[a] = ids[b];
             ++filled;
         };
         for (int j = 0; j < face.h; ++j)
             for (int i = 0; i < face.w; ++i) {
                 const std::size_t a = at(i, j);
                 if (i + 1 < face.w) {
-                    const std::size_t b = at(i + 1, j);
-                    if (rgba[4 * a + 2] != rgba[4 * b + 2]) fill(a, i, j, b), fill(b, i + 1, j, a);
+                    const std::size_t b = a + 1;
+                    if (ids[a] != ids[b]) fill(a, i, j, b), fill(b, i + 1, j, a);
                 }
                 if (j + 1 < face.h) {
-                    const std::size_t b = at(i, j + 1);
-                    if (rgba[4 * a + 2] != rgba[4 * b + 2]) fill(a, i, j, b), fill(b, i, j + 1, a);
+                    const std::size_t b = a + std::size_t(L.width);
+                    if (ids[a] != ids[b]) fill(a, i, j, b), fill(b, i, j + 1, a);
                 }
             }
     });
@@ -117,8 +124,8 @@ bool segment_crosses(const Polygon& q, const dvec3& from, const dvec3& d) {
 
 HemicubeVisibility::HemicubeVisibility(const Scene& scene, const HemicubeLayout& layout,
                                        const HemicubeFrame& frame, const float* rgba,
-                                       const dvec3& eye)
-    : scene_(&scene), layout_(&layout), frame_(frame), rgba_(rgba), eye_(eye) {}
+                                       const dvec3& eye, const float* ids)
+    : scene_(&scene), layout_(&layout), frame_(frame), rgba_(rgba), ids_(ids), eye_(eye) {}
 
 long HemicubeVisibility::shown(std::size_t at) const {
     return shown_polygon(rgba_, at);

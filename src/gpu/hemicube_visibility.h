@@ -22,16 +22,20 @@ bool segment_crosses(const Polygon& q, const dvec3& from, const dvec3& d);
 /// meets the polygon a 4-neighbour shows, within a hundredth of a pixel of its edges, in front
 /// of what it shows) takes that neighbour's value. A true silhouette is left alone: there the
 /// ray passes beside the nearer polygon by a share of a pixel. Returns the pixels changed.
+/// `ids` receives every pixel's ID (rgba's third channel) after the filling, 4 bytes a pixel,
+/// for HemicubeVisibility's searches.
 std::size_t fill_cracks(const Scene& scene, const HemicubeLayout& layout,
-                        const HemicubeFrame& frame, float* rgba, const dvec3& eye);
+                        const HemicubeFrame& frame, float* rgba, const dvec3& eye,
+                        std::vector<float>& ids);
 
 class HemicubeVisibility {
   public:
     /// The hemicube `rgba` (IDs as in FormFactorProvider::HemicubeImage) rendered with
     /// `layout` from the shooter whose frame is `frame`, its eye at `eye`. Keeps pointers: all
-    /// must outlive this object.
+    /// must outlive this object. `ids`, if given, holds rgba's third channel alone (as
+    /// fill_cracks leaves it): the searches compare neighbours there.
     HemicubeVisibility(const Scene& scene, const HemicubeLayout& layout, const HemicubeFrame& frame,
-                       const float* rgba, const dvec3& eye);
+                       const float* rgba, const dvec3& eye, const float* ids = nullptr);
 
     /// Is point x, on polygon `own`, seen from the eye? It is if the pixel its direction
     /// falls in shows `own`, nothing, or a polygon that the segment from the eye to x does
@@ -69,6 +73,7 @@ class HemicubeVisibility {
     const HemicubeLayout* layout_;
     HemicubeFrame frame_;
     const float* rgba_;
+    const float* ids_; ///< rgba_'s third channel apart, or null
     dvec3 eye_;
 };
 
@@ -81,7 +86,8 @@ template <class Mark> void HemicubeVisibility::occlusion_edges(int f, Mark mark)
         };
         const auto test = [&](int i0, int j0, int i1, int j1) {
             const std::size_t a = at(i0, j0), b = at(i1, j1);
-            if (rgba_[4 * a + 2] == rgba_[4 * b + 2]) return; // the same polygon, same side
+            if (ids_ ? ids_[a] == ids_[b] : rgba_[4 * a + 2] == rgba_[4 * b + 2])
+                return; // the same polygon, same side
             const long pa = shown(a), pb = shown(b);
             if (pa == pb) return;
             // Each way: a front of P at one pixel, something else at its neighbour.
