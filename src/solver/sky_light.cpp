@@ -36,10 +36,9 @@ bool sky_escapes(const Bounds& b, const Bvh& bvh, const dvec3& origin, const dve
 }
 
 SkyDelivery deliver_skylight(const Scene& scene, Hierarchy& hierarchy, int threads) {
-    SkyDelivery out;
-    if (!scene.sky) return out;
+    if (!scene.sky) return {};
     const Sky& sky = *scene.sky;
-    if (!(sky.scale > 0 || sky.ground_luminance() > 0)) return out;
+    if (!(sky.scale > 0 || sky.ground_luminance() > 0)) return {};
     const Bvh bvh(scene);
     const Bounds bounds = scene.bounds();
     const double offset = 1e-9 * bounds.diagonal();
@@ -72,21 +71,7 @@ SkyDelivery deliver_skylight(const Scene& scene, Hierarchy& hierarchy, int threa
             leaf_E[p][k] = kPi * sum / double(m * m);
         }
     });
-    for (std::uint32_t p = 0; p < count; ++p) {
-        out.rays += rays[p];
-        const auto level = std::uint32_t(hierarchy.depth(p));
-        for (std::uint32_t k = 0; k < leaf_E[p].size(); ++k) {
-            const double E = leaf_E[p][k];
-            if (!(E > 0)) continue;
-            const PatchAddress a{p, level, k};
-            const dvec3 irradiance(E);
-            const double area = double(hierarchy.node(a).area);
-            hierarchy.receive(a, irradiance);
-            out.power += irradiance * area;
-            out.absorbed += (dvec3(1.0) - hierarchy.reflectance(a)) * irradiance * area;
-        }
-    }
-    return out;
+    return receive_at_leaves(hierarchy, leaf_E, rays);
 }
 
 dvec3 sky_irradiance(const Sky& sky, const Bounds& bounds, const Bvh& bvh, const dvec3& x,

@@ -7,18 +7,15 @@
 
 #include "hemirad/hierarchy.h"
 #include "hemirad/scene.h"
+#include "solver/leaf_light.h"
 
 namespace hemirad {
 
 class Bvh;
 class Rng;
 
-/// What deliver_skylight() delivered, per RGB channel [W].
-struct SkyDelivery {
-    dvec3 power{0.0};    ///< sum over leaves of E * A: the sky's emitted power for the scene
-    dvec3 absorbed{0.0}; ///< sum of (1 - rho) E A; the rest, rho E A, is the leaves' unshot power
-    std::uint64_t rays = 0; ///< rays cast
-};
+/// What deliver_skylight() delivered (leaf_light.h).
+using SkyDelivery = LeafDelivery;
 
 /// Rays per leaf in deliver_skylight(): kSkyLeafRays^2 (stratified).
 inline constexpr int kSkyLeafRays = 16;

@@ -53,8 +53,7 @@ double ray_offset(const Scene& scene) {
 } // namespace
 
 SunDelivery deliver_sunlight(const Scene& scene, Hierarchy& hierarchy, int threads) {
-    SunDelivery out;
-    if (!scene.sun || !(scene.sun->normal_irradiance() > 0)) return out;
+    if (!scene.sun || !(scene.sun->normal_irradiance() > 0)) return {};
     const Sun& sun = *scene.sun;
     const Bvh bvh(scene);
     const double offset = ray_offset(scene);
@@ -79,21 +78,7 @@ SunDelivery deliver_sunlight(const Scene& scene, Hierarchy& hierarchy, int threa
             leaf_E[p][k] = E * v;
         }
     });
-    for (std::uint32_t p = 0; p < count; ++p) {
-        out.rays += rays[p];
-        const auto level = std::uint32_t(hierarchy.depth(p));
-        for (std::uint32_t k = 0; k < leaf_E[p].size(); ++k) {
-            const double E = leaf_E[p][k];
-            if (!(E > 0)) continue;
-            const PatchAddress a{p, level, k};
-            const dvec3 irradiance(E);
-            const double area = double(hierarchy.node(a).area);
-            hierarchy.receive(a, irradiance);
-            out.power += irradiance * area;
-            out.absorbed += (dvec3(1.0) - hierarchy.reflectance(a)) * irradiance * area;
-        }
-    }
-    return out;
+    return receive_at_leaves(hierarchy, leaf_E, rays);
 }
 
 dvec3 sun_irradiance(const Scene& scene, const Bvh& bvh, const dvec3& x, const dvec3& n,

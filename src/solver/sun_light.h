@@ -7,17 +7,14 @@
 
 #include "hemirad/hierarchy.h"
 #include "hemirad/scene.h"
+#include "solver/leaf_light.h"
 
 namespace hemirad {
 
 class Bvh;
 
-/// What deliver_sunlight() delivered, per RGB channel [W].
-struct SunDelivery {
-    dvec3 power{0.0};    ///< sum over leaves of E * A: the sun's emitted power for the scene
-    dvec3 absorbed{0.0}; ///< sum of (1 - rho) E A; the rest, rho E A, is the leaves' unshot power
-    std::uint64_t rays = 0; ///< shadow rays cast
-};
+/// What deliver_sunlight() delivered (leaf_light.h).
+using SunDelivery = LeafDelivery;
 
 /// Delivers the sun's direct irradiance E = E_n/683 max(0, n.s) V to every leaf patch
 /// (Hierarchy::receive), V the fraction of the leaf that sees the sun: shadow rays along s
