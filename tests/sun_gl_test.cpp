@@ -15,6 +15,7 @@
 #include "hemirad/reference.h"
 #include "hemirad/solver.h"
 #include "shared_gl_context.h"
+#include "window_room.h"
 
 using namespace hemirad;
 
@@ -28,19 +29,8 @@ SolverOptions gpu_options() {
     return o;
 }
 
-// A quad with corners c whose front faces along `facing` (the order flipped if needed).
-void quad(Scene& s, std::vector<dvec3> c, const dvec3& facing, std::uint32_t m) {
-    if (glm::dot(glm::cross(c[1] - c[0], c[2] - c[0]), facing) < 0) std::swap(c[1], c[3]);
-    ASSERT_EQ(add_polygon(s, c, m, 0).added, 1);
-}
-
-Scene empty_scene(double rho) {
-    Scene s;
-    s.source = "builtin:sun-test";
-    s.materials.push_back(Material{"m", dvec3(rho), dvec3(0.0)});
-    s.groups.push_back("g");
-    return s;
-}
+using window_room::empty_scene;
+using window_room::quad;
 
 Sun make_sun(double altitude, double azimuth, double lux) {
     Sun sun;
@@ -127,25 +117,15 @@ TEST_F(SunLight, PointInAShadowTakesNoDirectLight) {
     EXPECT_NEAR(s.emitted_power().x, E * (30 - 1 + 1), 1e-3 * E * 30);
 }
 
-// A 3 x 2.5 x 3 m room (rho 0.5) with a 1 m square window (a hole) in its south wall
-// (z = 3), sill at 1 m, lit by the sun alone at altitude 35 due south (80000 lx): the sunlit
-// patch on the floor is x in [1, 2], z in [0.14, 1.57]. Solver (default options) and final
-// gather against the path tracer, |ours - ref| <= rel ref + 4 sem: sunlit points rel 1 %
-// (direct light exact; the indirect part, ~7 % of the total, within 10 %), the shadowed ones
-// (all indirect: the gather's 1024 rays over the solution, as surfaces_gl_test) rel 8 %.
-TEST_F(SunLight, WindowRoomAgreesWithTheReference) {
-    Scene scene = empty_scene(0.5);
-    const double W = 3, H = 2.5, D = 3;
-    quad(scene, {{0, 0, 0}, {W, 0, 0}, {W, 0, D}, {0, 0, D}}, {0, 1, 0}, 0);  // floor
-    quad(scene, {{0, H, 0}, {W, H, 0}, {W, H, D}, {0, H, D}}, {0, -1, 0}, 0); // ceiling
-    quad(scene, {{0, 0, 0}, {0, H, 0}, {0, H, D}, {0, 0, D}}, {1, 0, 0}, 0);  // west
-    quad(scene, {{W, 0, 0}, {W, H, 0}, {W, H, D}, {W, 0, D}}, {-1, 0, 0}, 0); // east
-    quad(scene, {{0, 0, 0}, {W, 0, 0}, {W, H, 0}, {0, H, 0}}, {0, 0, 1}, 0);  // north
-    // The south wall around the window x in [1, 2], y in [1, 2].
-    quad(scene, {{0, 0, D}, {W, 0, D}, {W, 1, D}, {0, 1, D}}, {0, 0, -1}, 0);
-    quad(scene, {{0, 2, D}, {W, 2, D}, {W, H, D}, {0, H, D}}, {0, 0, -1}, 0);
-    quad(scene, {{0, 1, D}, {1, 1, D}, {1, 2, D}, {0, 2, D}}, {0, 0, -1}, 0);
-    quad(scene, {{2, 1, D}, {W, 1, D}, {W, 2, D}, {2, 2, D}}, {0, 0, -1}, 0);
+namespace {
+
+// Solves the window room lit by the sun at altitude 35 due south (80000 lx) with default
+// options and checks the final gather against the path tracer, |ours - ref| <= rel ref + 4 sem:
+// sunlit points rel 1 % (direct light exact; the indirect part, ~7 % of the total, within
+// 10 %), the shadowed ones (all indirect: the gather's 1024 rays over the solution, as
+// surfaces_gl_test) rel 8 %. The sunlit points' direct light must be E_direct * transmitted.
+void expect_window_room_agrees(Scene scene, double transmitted) {
+    const double H = window_room::kHeight, D = window_room::kDepth;
     scene.sun = make_sun(35, 180, 80000);
     finish_scene(scene, scene.source);
 
@@ -167,7 +147,7 @@ TEST_F(SunLight, WindowRoomAgreesWithTheReference) {
     std::printf("sun room: %ld shots, %.2f s, error bound %.2g\n", s.shots(), s.seconds(),
                 s.error_bound());
     const auto ours = gather(scene, s.solution(), all);
-    const double E_direct = 80000 / 683.0 * std::sin(35 * M_PI / 180);
+    const double E_direct = 80000 / 683.0 * std::sin(35 * M_PI / 180) * transmitted;
     for (std::size_t k = 0; k < all.size(); ++k) {
         const bool lit = k < sunlit.size();
         const double E = ref[k].E.x, sem = ref[k].sem.x, mine = ours[k].E().x;
@@ -176,4 +156,25 @@ TEST_F(SunLight, WindowRoomAgreesWithTheReference) {
         EXPECT_LE(std::abs(mine - E), (lit ? 0.01 : 0.08) * E + 4 * sem) << all[k].name;
         EXPECT_NEAR(ours[k].direct.x, lit ? E_direct : 0.0, 1e-9 * E_direct) << all[k].name;
     }
+}
+
+} // namespace
+
+// A 3 x 2.5 x 3 m room (rho 0.5) with a 1 m square window (a hole) in its south wall
+// (z = 3), sill at 1 m, lit by the sun alone at altitude 35 due south (80000 lx): the sunlit
+// patch on the floor is x in [1, 2], z in [0.14, 1.57].
+TEST_F(SunLight, WindowRoomAgreesWithTheReference) {
+    expect_window_room_agrees(window_room::room(0.5), 1.0);
+}
+
+// The same window glazed with a pane of normal-incidence transmittance 0.75 (glazing.h): the
+// sun crosses it at cos 35 degrees to its normal, so the sunlit floor takes 0.75 * T(cos 35) /
+// T(1) of the open window's direct light; the path tracer's panes are its own test.
+TEST_F(SunLight, GlazedWindowRoomAgreesWithTheReference) {
+    Scene scene = window_room::room(0.5);
+    window_room::glaze(scene, 0.75, true);
+    const double T = scene.glazing[0].transmittance.at(std::cos(35 * M_PI / 180));
+    EXPECT_LT(T, 0.75);
+    EXPECT_GT(T, 0.7);
+    expect_window_room_agrees(scene, T);
 }

@@ -49,6 +49,7 @@
 namespace hemirad {
 
 class Bvh;
+class GlazingTracer;
 class Rng;
 
 struct GatherOptions {
@@ -115,10 +116,11 @@ class HEMIRAD_API FinalGather {
     const Hierarchy* h_;
     GatherOptions options_;
     std::unique_ptr<Bvh> bvh_;
-    std::vector<std::uint32_t> emitters_; ///< polygons with exitance > 0
-    std::vector<double> leaf_size_;       ///< per polygon, sqrt(area) / 2^depth [unit]
-    double offset_ = 0;                   ///< origin offset along the normal [unit]
-    Bounds bounds_;                       ///< the scene's
+    std::unique_ptr<GlazingTracer> glazing_; ///< the window panes (glazing.h)
+    std::vector<std::uint32_t> emitters_;    ///< polygons with exitance > 0
+    std::vector<double> leaf_size_;          ///< per polygon, sqrt(area) / 2^depth [unit]
+    double offset_ = 0;                      ///< origin offset along the normal [unit]
+    Bounds bounds_;                          ///< the scene's
 };
 
 } // namespace hemirad

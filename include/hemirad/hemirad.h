@@ -41,6 +41,7 @@
 #include "hemirad/export.h"
 #include "hemirad/form_factors.h"
 #include "hemirad/gather.h"
+#include "hemirad/glazing.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/grid.h"
 #include "hemirad/hierarchy.h"

@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "hemirad/glazing.h"
 #include "hemirad/photometry.h"
 #include "hemirad/sky.h"
 #include "hemirad/sun.h"
@@ -56,6 +57,13 @@ struct HEMIRAD_API Polygon {
     dvec3 centroid() const;
 };
 
+/// A window pane (glazing.h; SCENE.json "glazing"): a polygon of a glazing group, taken out of
+/// Scene::polygons, that transmits light crossing it.
+struct GlazingPane {
+    Polygon polygon; ///< its corners, normal, area and group
+    PaneTransmittance transmittance;
+};
+
 /// Texture coordinates of a polygon's corners (texture.h: (0, 0) the image's top-left, t down),
 /// in the order of Polygon::v; [3] unused for triangles.
 using TexCoords = std::array<glm::vec2, 4>;
@@ -95,6 +103,9 @@ struct HEMIRAD_API Scene {
     /// the horizon: what it sends to every leaf patch is delivered before the first shot
     /// (solver/sky_light.h) and gathered at points. Not in emitted_power().
     std::optional<Sky> sky;
+    /// Window panes (glazing.h): not surfaces; every light path that crosses one is attenuated
+    /// by its transmittance (ff/glazing_tracer.h). Empty without "glazing".
+    std::vector<GlazingPane> glazing;
     std::vector<std::string> warnings; ///< things the loader fixed or dropped, for reports
     /// Reflectance textures (Material::texture); empty in an untextured scene.
     std::vector<Texture> textures;

@@ -115,6 +115,7 @@ enum class StopReason { Running, Converged, MaxShots, TimeLimit, NothingToShoot 
 HEMIRAD_API const char* to_string(StopReason r);
 
 class ClusterTree;
+class GlazingTracer;
 class PlaneCuts;
 struct Photometry;
 
@@ -268,6 +269,9 @@ class HEMIRAD_API Solver {
     dvec3 signed_unshot_power() const;       ///< unshot power, signs kept
     PatchAddress select_shooter(std::uint32_t polygon);
     void shoot_luminaire(std::size_t k, ShotRecord& rec);
+    /// Multiplies each link's form factor by the transmittance of the window panes between
+    /// `origin` (the shooting point) and its receiver's centre (Scene::glazing; none: nothing).
+    void attenuate_through_glazing(const dvec3& origin);
     /// Delivers the links of a shot of unshot radiosity dB from a shooter of area A_S (a
     /// luminaire: its power, A_S = 1): row sum, guard, receive, absorbed and escaped power.
     void deliver(const dvec3& dB, double area_s, ShotRecord& rec);
@@ -289,6 +293,7 @@ class HEMIRAD_API Solver {
     SolverOptions options_;
     Hierarchy hierarchy_;
     std::unique_ptr<FormFactorProvider> provider_;
+    std::unique_ptr<GlazingTracer> glazing_; ///< the scene's window panes (glazing.h)
     std::vector<Link> links_;
     std::vector<dvec3> luminaire_unshot_;
     bool must_split(std::uint64_t node) const;

@@ -199,11 +199,16 @@ class PathTracer {
             if (!(cos_x > 0)) break; // measure zero: the tangent plane
             Hit hit;
             if (!bvh_.intersect(x, w, std::numeric_limits<double>::infinity(), hit, ignore)) {
-                // Escaped: the sky or the ground, if any (pi L / 683 per unit of beta).
-                if (sky_) E += beta * (kPi * sky_->luminance(w) / kLumensPerWatt);
+                // Escaped: the sky or the ground, if any (pi L / 683 per unit of beta), through
+                // the panes on the way.
+                if (sky_)
+                    E += beta * (kPi * sky_->luminance(w) / kLumensPerWatt) *
+                         panes(x, w, std::numeric_limits<double>::infinity());
                 break;
             }
             if (!hit.front) break; // a back: radiance 0, and it reflects nothing either
+            beta *= panes(x, w, hit.t);
+            if (!(max_channel(beta) > 0)) break;
             const Polygon& p = scene_.polygons[hit.polygon];
             const Material& m = scene_.material_of(p);
             const double s = select_[hit.polygon];
@@ -248,7 +253,8 @@ class PathTracer {
         double e = 0;
         for (const Luminaire& l : scene_.luminaires) {
             const double el = l.irradiance(x, n);
-            if (el > 0 && !bvh_.occluded(x, l.position, ignore, kNoPolygon)) e += el;
+            if (el > 0 && !bvh_.occluded(x, l.position, ignore, kNoPolygon))
+                e += el * panes(x, l.position - x, 1.0);
         }
         return dvec3(e + sun(x, n, ignore));
     }
@@ -263,7 +269,8 @@ class PathTracer {
         if (!(cos_x > 0)) return 0;
         Hit hit;
         if (bvh_.intersect(x, s, std::numeric_limits<double>::infinity(), hit, ignore)) return 0;
-        return scene_.sun->illuminance / kLumensPerWatt * cos_x;
+        return scene_.sun->illuminance / kLumensPerWatt * cos_x *
+               panes(x, s, std::numeric_limits<double>::infinity());
     }
 
     dvec3 light_sample(const dvec3& x, const dvec3& n, std::uint32_t ignore, std::uint32_t e,
@@ -281,7 +288,32 @@ class PathTracer {
         if (!(cos_x > 0 && cos_y > 0)) return dvec3(0.0);
         if (bvh_.occluded(x, y, ignore, e)) return dvec3(0.0);
         const double p_l = select_[e] * r2 / (p.area * cos_y);
-        return scene_.material_of(p).Ke * (cos_x / (p_l + cos_x / kPi));
+        return scene_.material_of(p).Ke * (cos_x / (p_l + cos_x / kPi)) * panes(x, d, 1.0);
+    }
+
+    /// What the window panes (Scene::glazing) let through along x + t d, t in (0, t_max): the
+    /// product of the transmittances of those the ray crosses. Its own test, pane by pane (the
+    /// solver's goes through a BVH, ff/glazing_tracer.h): the crossing of each pane's plane,
+    /// inside every edge.
+    double panes(const dvec3& x, const dvec3& d, double t_max) const {
+        double T = 1;
+        const double length = glm::length(d);
+        for (const GlazingPane& pane : scene_.glazing) {
+            const Polygon& p = pane.polygon;
+            const double dn = glm::dot(d, p.normal);
+            if (dn == 0) continue;
+            const double t = glm::dot(p.v[0] - x, p.normal) / dn;
+            if (!(t > 1e-9 && t < t_max * (1 - 1e-7))) continue;
+            const dvec3 y = x + t * d;
+            bool inside = true;
+            for (int k = 0; k < p.count && inside; ++k) {
+                const dvec3& a = p.v[k];
+                const dvec3& b = p.v[(k + 1) % p.count];
+                inside = glm::dot(glm::cross(b - a, y - a), p.normal) >= 0;
+            }
+            if (inside) T *= pane.transmittance.at(dn / length);
+        }
+        return T;
     }
 
     const Scene& scene_;

@@ -288,6 +288,18 @@ void mix_sky(Fnv1a& mix, const std::optional<Sky>& sky) {
     if (sky_needs_sun(sky->model)) mix(&sky->sun, sizeof(dvec3));
 }
 
+/// The panes' corners and transmittance (none: nothing, so a scene without glazing hashes as it
+/// always did). Both belong to the geometry: incremental re-solving does not edit them.
+void mix_glazing(Fnv1a& mix, const std::vector<GlazingPane>& glazing) {
+    for (const GlazingPane& g : glazing) {
+        mix(&g.polygon.count, sizeof g.polygon.count);
+        for (int i = 0; i < g.polygon.count; ++i) mix(&g.polygon.v[i], sizeof(dvec3));
+        mix(&g.transmittance.normal, sizeof(double));
+        const char angular = g.transmittance.angular ? 1 : 0;
+        mix(&angular, 1);
+    }
+}
+
 /// A luminaire's placement and distribution; its multiplier when `multiplier`.
 void mix_luminaire(Fnv1a& mix, const Luminaire& l, bool multiplier) {
     for (const dvec3* v : {&l.position, &l.aim, &l.c0}) mix(v, sizeof(dvec3));
@@ -324,6 +336,7 @@ std::uint64_t Scene::content_hash() const {
     for (const Luminaire& l : luminaires) mix_luminaire(mix, l, true);
     mix_sun(mix, sun);
     mix_sky(mix, sky);
+    mix_glazing(mix, glazing);
     return mix.h;
 }
 
@@ -346,6 +359,7 @@ std::uint64_t Scene::geometry_hash() const {
     // another scene.
     mix_sun(mix, sun);
     mix_sky(mix, sky);
+    mix_glazing(mix, glazing);
     return mix.h;
 }
 

@@ -478,6 +478,80 @@ Sky read_sky(const Reader& r, const json& j, const SkyFrame& frame, const std::o
     return make_sky(model, e_h, rho_g, frame.up, sun, blend);
 }
 
+/// The group names of a scene, for messages.
+std::string group_list(const Scene& scene) {
+    std::string names;
+    for (const std::string& n : scene.groups) names += (names.empty() ? "" : ", ") + n;
+    return names;
+}
+
+// "glazing": {"GROUP": tau} or {"GROUP": {"transmittance": tau, "angular": false}} (glazing.h):
+// the groups' polygons leave the surfaces and become panes. Before the surfaces are finished,
+// so that no pane cuts a wall (split_intersections) or gets a twin.
+void read_glazing(const Reader& r, const json& j, Scene& scene) {
+    const std::string at = "/glazing";
+    if (!j.is_object())
+        r.fail(at, "expected an object of surface groups and transmittances, e.g. \"glazing\": "
+                   "{\"Glass\": 0.7}");
+    std::vector<int> pane_of_group(scene.groups.size(), -1);
+    std::vector<PaneTransmittance> panes;
+    for (const auto& [name, value] : j.items()) {
+        const std::string key = at + "/" + name;
+        const int g = scene.find_group(name);
+        if (g < 0)
+            r.fail(key, "no surface group '" + name +
+                            "' in the included files (groups: " + group_list(scene) + ")");
+        const json* tau_value = &value;
+        bool angular = true;
+        if (value.is_object()) {
+            r.only_keys(value, key, {"transmittance", "angular"});
+            if (!value.contains("transmittance"))
+                r.fail(key, "needs 'transmittance': the pane's at normal incidence, in [0, 1]");
+            tau_value = &value["transmittance"];
+            if (value.contains("angular")) {
+                if (!value["angular"].is_boolean())
+                    r.fail(key + "/angular",
+                           "expected true or false, got " + Reader::dump(value["angular"]));
+                angular = value["angular"].get<bool>();
+            }
+        }
+        const double tau = r.number(*tau_value, key);
+        if (!(tau >= 0 && tau <= 1))
+            r.fail(key, "the transmittance must be in [0, 1], got " + Reader::dump(*tau_value));
+        const PaneTransmittance t = make_pane_transmittance(tau, angular);
+        if (angular && !t.angular && tau > 0)
+            scene.warnings.push_back(
+                "glazing '" + name + "': a transmittance of " + num(tau) +
+                " is above what clear glass transmits at normal incidence (" +
+                num(clear_glass_transmittance()) +
+                "): it applies at every angle (no Fresnel fall-off towards grazing)");
+        pane_of_group[std::size_t(g)] = int(panes.size());
+        panes.push_back(t);
+    }
+    // Move the panes out, keeping the texture coordinates parallel to the polygons.
+    std::size_t kept = 0;
+    const bool uv = !scene.texcoords.empty();
+    for (std::size_t p = 0; p < scene.polygons.size(); ++p) {
+        const Polygon& poly = scene.polygons[p];
+        const int pane = pane_of_group[poly.group];
+        if (pane >= 0) {
+            scene.glazing.push_back({poly, panes[std::size_t(pane)]});
+            continue;
+        }
+        scene.polygons[kept] = poly;
+        if (uv) scene.texcoords[kept] = scene.texcoords[p];
+        ++kept;
+    }
+    scene.polygons.resize(kept);
+    if (uv) scene.texcoords.resize(kept);
+    for (std::size_t g = 0; g < pane_of_group.size(); ++g)
+        if (pane_of_group[g] >= 0 &&
+            std::none_of(scene.glazing.begin(), scene.glazing.end(),
+                         [&](const GlazingPane& q) { return q.polygon.group == g; }))
+            scene.warnings.push_back("glazing '" + scene.groups[g] +
+                                     "': the group has no polygons");
+}
+
 } // namespace
 
 bool is_scene_json(const std::string& path) {
@@ -504,8 +578,9 @@ Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
     KeyLines locator(text);
     json::sax_parse(text, &locator);
     const Reader r(path, locator.lines);
-    r.only_keys(doc, "",
-                {"include", "luminaires", "cameras", "two_sided", "sun", "sky", "up", "north"});
+    r.only_keys(
+        doc, "",
+        {"include", "luminaires", "cameras", "two_sided", "glazing", "sun", "sky", "up", "north"});
 
     Scene scene;
     scene.source = path;
@@ -524,6 +599,7 @@ Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
         part.finish_surfaces = false;
         merge(scene, is_gltf(resolved) ? load_gltf(resolved, part) : load_obj(resolved, part));
     }
+    if (doc.contains("glazing")) read_glazing(r, doc["glazing"], scene);
     std::vector<char> pick; // per group: two-sided ("two_sided")
     if (doc.contains("two_sided")) {
         // Surface groups whose polygons are two-sided (make_two_sided).
@@ -536,12 +612,9 @@ Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
             const std::string at = "/two_sided/" + std::to_string(k);
             const std::string name = r.string(ts[k], at);
             const int g = scene.find_group(name);
-            if (g < 0) {
-                std::string names;
-                for (const std::string& n : scene.groups) names += (names.empty() ? "" : ", ") + n;
+            if (g < 0)
                 r.fail(at, "no surface group '" + name +
-                               "' in the included files (groups: " + names + ")");
-            }
+                               "' in the included files (groups: " + group_list(scene) + ")");
             pick[std::size_t(g)] = 1;
         }
     }

@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/parallel.h"
 #include "core/sampling.h"
 #include "ff/bvh.h"
+#include "ff/glazing_tracer.h"
 #include "hemirad/error.h"
 #include "hemirad/form_factors.h"
 #include "hemirad/readout.h"
@@ -42,7 +44,8 @@ void validate_gather_options(const GatherOptions& o) {
 }
 
 FinalGather::FinalGather(const Hierarchy& h, const GatherOptions& options)
-    : h_(&h), options_(options), bvh_(std::make_unique<Bvh>(h.scene())) {
+    : h_(&h), options_(options), bvh_(std::make_unique<Bvh>(h.scene())),
+      glazing_(std::make_unique<GlazingTracer>(h.scene())) {
     validate_gather_options(options_);
     const Scene& scene = h.scene();
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
@@ -75,22 +78,28 @@ dvec3 FinalGather::direct(const dvec3& x, const dvec3& n, std::uint32_t self,
         const int level =
             std::clamp(int(std::ceil(std::log2(std::max(cells, 1.0)))), 0, kMaxCellLevel);
         const std::uint32_t count = 1u << (2 * level);
+        // What of a cell reaches x: 0 when occluded, else the panes' transmittance (1 without).
         const auto visible = [&](const PatchGeometry& g) {
             dvec3 y = g.centre;
             if (options_.jitter) {
                 const double pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
                 y = area_point(g.corners.data(), g.count, pick, u1, u2);
             }
-            return !bvh_->occluded(x, y, self, e);
+            return bvh_->occluded(x, y, self, e) ? 0.0 : glazing_->between(x, y);
         };
         std::uint32_t seen = 1; // without the coarse test: "some visible", go fine
+        bool clear = false;     // every coarse cell seen whole (no pane between)
         if (options_.coarse_test) {
             seen = 0;
-            for (std::uint32_t c = 0; c < count; ++c)
-                seen += visible(patch_geometry(P, std::uint32_t(level), c)) ? 1 : 0;
+            clear = true;
+            for (std::uint32_t c = 0; c < count; ++c) {
+                const double v = visible(patch_geometry(P, std::uint32_t(level), c));
+                seen += v > 0 ? 1 : 0;
+                clear = clear && v == 1.0;
+            }
         }
         double f = 0;
-        if (seen == count && options_.coarse_test) {
+        if (seen == count && clear) {
             f = F;
         } else if (seen > 0) {
             // Penumbra: sum over fine cells of F(dx -> cell) * (one jittered ray's visibility).
@@ -99,7 +108,7 @@ dvec3 FinalGather::direct(const dvec3& x, const dvec3& n, std::uint32_t self,
             for (std::uint32_t c = 0; c < fine; ++c) {
                 const PatchGeometry g = patch_geometry(P, fine_level, c);
                 const double fc = point_to_polygon_ff(x, n, g.corners.data(), g.count);
-                if (fc > 0 && visible(g)) f += fc;
+                if (fc > 0) f += fc * visible(g);
             }
         }
         E += f * scene.material_of(P).exitance();
@@ -112,9 +121,10 @@ dvec3 FinalGather::luminaires(const dvec3& x, const dvec3& n, std::uint32_t self
     double e = 0;
     for (const Luminaire& l : h_->scene().luminaires) {
         const double el = l.irradiance(x, n);
-        if (el > 0 && !bvh_->occluded(x, l.position, self, kNoPolygon)) e += el;
+        if (el > 0 && !bvh_->occluded(x, l.position, self, kNoPolygon))
+            e += el * glazing_->between(x, l.position);
     }
-    return dvec3(e) + sun_irradiance(h_->scene(), *bvh_, x, n, self, offset_);
+    return dvec3(e) + sun_irradiance(h_->scene(), *bvh_, x, n, self, offset_, glazing_.get());
 }
 
 dvec3 FinalGather::direct_sample(const dvec3& y, const dvec3& n, std::uint32_t self,
@@ -128,8 +138,9 @@ dvec3 FinalGather::direct_sample(const dvec3& y, const dvec3& n, std::uint32_t s
         const double F = point_to_polygon_ff(y, n, P.v.data(), P.count);
         if (F <= 0) continue;
         const double pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
-        if (bvh_->occluded(y, area_point(P.v.data(), P.count, pick, u1, u2), self, e)) continue;
-        E += F * scene.material_of(P).exitance();
+        const dvec3 z = area_point(P.v.data(), P.count, pick, u1, u2);
+        if (bvh_->occluded(y, z, self, e)) continue;
+        E += F * glazing_->between(y, z) * scene.material_of(P).exitance();
     }
     return E + luminaires(y, n, self);
 }
@@ -141,11 +152,14 @@ dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_
     if (!bvh_->intersect(origin, dir, 1e300, hit, self)) {
         // Escaped: the sky (or the ground) for the rays from a hit near the point; the first
         // rays' sky is the direct part (at()), gathered apart.
-        const Scene& sc = h_->scene();
-        if (near_path || !sc.sky) return dvec3(0.0);
-        return dvec3(std::numbers::pi * sc.sky->radiance(glm::normalize(dir)));
+        if (near_path || !scene.sky) return dvec3(0.0);
+        return dvec3(std::numbers::pi * scene.sky->radiance(glm::normalize(dir)) *
+                     glazing_->along(origin, dir, std::numeric_limits<double>::infinity()));
     }
     if (!hit.front) return dvec3(0.0);
+    // Through window panes: what comes back is attenuated by them.
+    const double through = glazing_->along(origin, dir, hit.t);
+    if (!(through > 0)) return dvec3(0.0);
     const Polygon& q = scene.polygons[hit.polygon];
     const dvec3 rho = reflectance_at(scene, hit.polygon, hit.u, hit.v); // the texel there
     if (!(rho.x > 0 || rho.y > 0 || rho.z > 0)) return dvec3(0.0);
@@ -165,11 +179,12 @@ dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_
         // into another, a pocket), the leaves beyond average light from outside the gap: the
         // direct light at y alone.
         if (distance < kGapLeaves * leaf_size_[hit.polygon])
-            return rho * direct_sample(y, q.normal, hit.polygon, rng);
-        return rho * (direct_sample(y, q.normal, hit.polygon, rng) +
-                      reflected(y_off, next, hit.polygon, rng, false));
+            return through * rho * direct_sample(y, q.normal, hit.polygon, rng);
+        return through * rho *
+               (direct_sample(y, q.normal, hit.polygon, rng) +
+                reflected(y_off, next, hit.polygon, rng, false));
     }
-    return rho * irradiance_at(*h_, SurfacePoint{hit.polygon, hit.u, hit.v, 0.0});
+    return through * rho * irradiance_at(*h_, SurfacePoint{hit.polygon, hit.u, hit.v, 0.0});
 }
 
 dvec3 FinalGather::indirect(const dvec3& x, const dvec3& n, std::uint32_t self,
@@ -198,8 +213,9 @@ GatherValue FinalGather::at(const GatherPoint& q, std::uint64_t index) const {
     v.direct = direct(q.position, n, self, seed);
     if (h_->scene().sky) {
         Rng rng(splitmix64(seed + 2));
-        v.direct += sky_irradiance(*h_->scene().sky, bounds_, *bvh_, q.position, n, self, offset_,
-                                   rng, options_.sky_cells, options_.sky_split);
+        v.direct +=
+            sky_irradiance(*h_->scene().sky, bounds_, *bvh_, q.position, n, self, offset_, rng,
+                           options_.sky_cells, options_.sky_split, nullptr, glazing_.get());
     }
     v.indirect = indirect(q.position, n, self, splitmix64(seed + 1));
     return v;

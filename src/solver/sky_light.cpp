@@ -3,12 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
 #include "core/parallel.h"
 #include "core/sampling.h"
 #include "ff/bvh.h"
+#include "ff/glazing_tracer.h"
 #include "hemirad/patch.h"
 
 namespace hemirad {
@@ -16,6 +18,7 @@ namespace hemirad {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+constexpr double kForever = std::numeric_limits<double>::infinity();
 /// Cells across which the sky's radiance changes by more than this fraction are split (their
 /// neighbouring pilots, kPilot to a cell, differing by more than kSteep / kPilot).
 constexpr double kSteep = 0.25;
@@ -40,6 +43,7 @@ SkyDelivery deliver_skylight(const Scene& scene, Hierarchy& hierarchy, int threa
     const Sky& sky = *scene.sky;
     if (!(sky.scale > 0 || sky.ground_luminance() > 0)) return {};
     const Bvh bvh(scene);
+    const GlazingTracer glazing(scene);
     const Bounds bounds = scene.bounds();
     const double offset = 1e-9 * bounds.diagonal();
     const auto count = std::uint32_t(scene.polygons.size());
@@ -65,7 +69,8 @@ SkyDelivery deliver_skylight(const Scene& scene, Hierarchy& hierarchy, int threa
                         area_point(g.corners.data(), g.count, pick, a1, a2) + offset * poly.normal;
                     const double u1 = (q + rng.uniform()) / m, u2 = (j + rng.uniform()) / m;
                     const dvec3 w = cosine_direction(poly.normal, t, b, u1, u2);
-                    if (sky_escapes(bounds, bvh, x, w, p)) sum += sky.radiance(w);
+                    if (sky_escapes(bounds, bvh, x, w, p))
+                        sum += sky.radiance(w) * glazing.along(x, w, kForever);
                 }
             rays[p] += std::uint64_t(m * m);
             leaf_E[p][k] = kPi * sum / double(m * m);
@@ -76,7 +81,7 @@ SkyDelivery deliver_skylight(const Scene& scene, Hierarchy& hierarchy, int threa
 
 dvec3 sky_irradiance(const Sky& sky, const Bounds& bounds, const Bvh& bvh, const dvec3& x,
                      const dvec3& n, std::uint32_t self, double offset, Rng& rng, int coarse,
-                     int fine, std::uint64_t* rays) {
+                     int fine, std::uint64_t* rays, const GlazingTracer* glazing) {
     const bool ground = sky.ground_luminance() > 0;
     dvec3 t, b;
     orthonormal_basis(n, t, b);
@@ -89,7 +94,7 @@ dvec3 sky_irradiance(const Sky& sky, const Bounds& bounds, const Bvh& bvh, const
         ++cast;
         L = 0;
         if (!sky_escapes(bounds, bvh, origin, w, self)) return Seen::Polygon;
-        L = sky.radiance(w);
+        L = sky.radiance(w) * (glazing ? glazing->along(origin, w, kForever) : 1.0);
         if (glm::dot(w, sky.up) > 0) return Seen::Sky;
         return ground ? Seen::Ground : Seen::Polygon;
     };

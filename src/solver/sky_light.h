@@ -12,6 +12,7 @@
 namespace hemirad {
 
 class Bvh;
+class GlazingTracer;
 class Rng;
 
 /// What deliver_skylight() delivered (leaf_light.h).
@@ -24,7 +25,8 @@ inline constexpr int kSkyLeafRays = 16;
 /// (Hierarchy::receive): E = pi/N sum_k L(w_k)/683 over N = 16 x 16 cosine-distributed
 /// directions w_k stratified over the unit square (core/sampling.h cosine_direction), each from
 /// its own point jittered over the leaf's area, L(w) the sky's luminance (sky.h) for a ray that
-/// leaves the scene, 0 for one that meets a polygon (pdf cos/pi: E = pi E[L] per sample).
+/// leaves the scene, 0 for one that meets a polygon (pdf cos/pi: E = pi E[L] per sample), times
+/// the transmittance of the window panes it crosses (glazing.h).
 /// Nothing for a scene without a sky. threads: 0 = one per core.
 SkyDelivery deliver_skylight(const Scene& scene, Hierarchy& hierarchy, int threads = 0);
 
@@ -37,10 +39,12 @@ SkyDelivery deliver_skylight(const Scene& scene, Hierarchy& hierarchy, int threa
 /// more than 25 % across a cell); those are sampled by fine x fine jittered rays, the others by one
 /// jittered ray. The pilots only choose, so the estimate is unbiased; the edges of openings
 /// are resolved as by (coarse * fine)^2 stratified rays at the cost of the cells along them.
-/// `rays` counts the rays cast (pilots too).
+/// `rays` counts the rays cast (pilots too). A ray through window panes brings the sky times
+/// their transmittance (`glazing`; null: no panes).
 dvec3 sky_irradiance(const Sky& sky, const Bounds& bounds, const Bvh& bvh, const dvec3& x,
                      const dvec3& n, std::uint32_t self, double offset, Rng& rng, int coarse = 32,
-                     int fine = 8, std::uint64_t* rays = nullptr);
+                     int fine = 8, std::uint64_t* rays = nullptr,
+                     const GlazingTracer* glazing = nullptr);
 
 /// Does the ray from `origin` along unit `w` leave the scene of bounds `b` (meet no polygon but
 /// `self`)?

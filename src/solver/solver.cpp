@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "ff/glazing_tracer.h"
 #include "hemirad/error.h"
 #include "hemirad/memory_guard.h"
 #include "hemirad/solver_options.h"
@@ -106,6 +107,9 @@ void Solver::init() {
         cluster_power_.assign(clusters_->nodes().size(), 0.0);
         cluster_view_.assign(clusters_->nodes().size(), kViewUnknown);
     }
+    // Window panes (glazing.h) are no polygons: hemicubes look through them, and the links they
+    // find are attenuated by the panes between (attenuate_through_glazing).
+    if (!scene_->glazing.empty()) glazing_ = std::make_unique<GlazingTracer>(*scene_);
     // Polygons whose plane cuts a shooter: the hemicube shows them edge-on (plane_cuts.h).
     if (options_.shooter_parallax > 0) plane_cuts_ = std::make_unique<PlaneCuts>(*scene_, 1.0);
     emitted_ = scene_->emitted_power();
@@ -346,6 +350,7 @@ PatchAddress Solver::shoot_patch(std::uint32_t polygon, ShotRecord& rec, dvec3& 
         }
         break;
     }
+    attenuate_through_glazing(shooter.geometry.centre);
     rec.shooter = sa;
     rec.shooter_power = shooter.unshot_power;
     rec.links = links_.size();
@@ -362,6 +367,7 @@ void Solver::shoot_luminaire(std::size_t k, ShotRecord& rec) {
     auto t0 = Clock::now();
     Luminaire spare;
     provider_->shoot_point(solver_detail::shooting_luminaire(scene_->luminaires[k], spare), links_);
+    attenuate_through_glazing(scene_->luminaires[k].position);
     rec.t_form_factors = since(t0);
     rec.ff_phases = provider_->last_timings();
     rec.links = links_.size();
@@ -579,9 +585,20 @@ bool Solver::shoot_cluster(ShotRecord& rec, std::uint32_t& polygon) {
         for (std::uint32_t m : c.members)
             if (sum(hierarchy_.unshot_power(m)) > 0) hierarchy_.clear_unshot({m, 0, 0});
         rec.t_update += since(t0);
+        attenuate_through_glazing(c.rect.count == 4 ? c.rect.centre : c.centre);
         deliver(power, 1.0, rec);
         last_polygon_ = -1;
         return true;
+    }
+}
+
+void Solver::attenuate_through_glazing(const dvec3& origin) {
+    if (!glazing_ || glazing_->empty()) return;
+    for (Link& l : links_) {
+        const dvec3 to =
+            patch_geometry(scene_->polygons[l.receiver.polygon], l.receiver.level, l.receiver.index)
+                .centre;
+        l.ff = float(double(l.ff) * glazing_->between(origin, to));
     }
 }
 

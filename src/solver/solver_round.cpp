@@ -123,6 +123,7 @@ bool Solver::step_round() {
             provider_->shoot_point(solver_detail::shooting_luminaire(
                                        scene_->luminaires[std::size_t(c.luminaire)], spare),
                                    links_);
+            attenuate_through_glazing(scene_->luminaires[std::size_t(c.luminaire)].position);
             mine.t_form_factors = since(t0);
             mine.shooter_power = solver_detail::magnitude(power);
             h.dB[0] = power.x, h.dB[1] = power.y, h.dB[2] = power.z;

@@ -7,6 +7,7 @@
 
 #include "core/parallel.h"
 #include "ff/bvh.h"
+#include "ff/glazing_tracer.h"
 #include "hemirad/patch.h"
 
 namespace hemirad {
@@ -16,11 +17,14 @@ namespace {
 /// Shadow-ray grids over a leaf: kCoarse x kCoarse first, kFine x kFine where that is mixed.
 constexpr int kCoarse = 4, kFine = 8;
 
-/// Is the ray from x + offset n along s blocked by a polygon other than `self`?
-bool in_shadow(const Bvh& bvh, const dvec3& s, const dvec3& x, const dvec3& n, std::uint32_t self,
-               double offset) {
+/// What reaches x + offset n along s: 0 where a polygon other than `self` blocks the ray,
+/// else the transmittance of the window panes it crosses (1 without).
+double sun_reaches(const Bvh& bvh, const GlazingTracer* glazing, const dvec3& s, const dvec3& x,
+                   const dvec3& n, std::uint32_t self, double offset) {
     Hit hit;
-    return bvh.intersect(x + offset * n, s, std::numeric_limits<double>::infinity(), hit, self);
+    const dvec3 o = x + offset * n;
+    if (bvh.intersect(o, s, std::numeric_limits<double>::infinity(), hit, self)) return 0.0;
+    return glazing ? glazing->along(o, s, std::numeric_limits<double>::infinity()) : 1.0;
 }
 
 /// The point of a leaf at (a, b) in [0, 1]^2: bilinear over a quad's corners; over a triangle
@@ -33,17 +37,23 @@ dvec3 leaf_point(const PatchGeometry& g, double a, double b) {
     return (1 - r) * c[0] + r * ((1 - b) * c[1] + b * c[2]);
 }
 
-/// The fraction of an m x m grid of cell centres over the leaf that sees the sun.
-double visible_fraction(const Bvh& bvh, const dvec3& s, const PatchGeometry& g, const dvec3& n,
-                        std::uint32_t self, double offset, int m, std::uint64_t& rays) {
-    int seen = 0;
+/// The mean over an m x m grid of cell centres over the leaf of what reaches them of the sun
+/// (sun_reaches); `mixed`: they differ.
+double visible_fraction(const Bvh& bvh, const GlazingTracer& glazing, const dvec3& s,
+                        const PatchGeometry& g, const dvec3& n, std::uint32_t self, double offset,
+                        int m, std::uint64_t& rays, bool& mixed) {
+    double seen = 0, first = -1;
+    mixed = false;
     for (int j = 0; j < m; ++j)
-        for (int i = 0; i < m; ++i)
-            seen += in_shadow(bvh, s, leaf_point(g, (i + 0.5) / m, (j + 0.5) / m), n, self, offset)
-                        ? 0
-                        : 1;
+        for (int i = 0; i < m; ++i) {
+            const double v = sun_reaches(
+                bvh, &glazing, s, leaf_point(g, (i + 0.5) / m, (j + 0.5) / m), n, self, offset);
+            if (first < 0) first = v;
+            mixed = mixed || v != first;
+            seen += v;
+        }
     rays += std::uint64_t(m * m);
-    return double(seen) / double(m * m);
+    return seen / double(m * m);
 }
 
 double ray_offset(const Scene& scene) {
@@ -56,6 +66,7 @@ SunDelivery deliver_sunlight(const Scene& scene, Hierarchy& hierarchy, int threa
     if (!scene.sun || !(scene.sun->normal_irradiance() > 0)) return {};
     const Sun& sun = *scene.sun;
     const Bvh bvh(scene);
+    const GlazingTracer glazing(scene);
     const double offset = ray_offset(scene);
     const auto count = std::uint32_t(scene.polygons.size());
     // Per polygon, the irradiance of each leaf (computed in parallel, received in order).
@@ -71,10 +82,12 @@ SunDelivery deliver_sunlight(const Scene& scene, Hierarchy& hierarchy, int threa
         leaf_E[p].assign(leaves, 0.0);
         for (std::uint32_t k = 0; k < leaves; ++k) {
             const PatchGeometry g = patch_geometry(poly, level, k);
-            double v =
-                visible_fraction(bvh, sun.direction, g, poly.normal, p, offset, kCoarse, rays[p]);
-            if (v > 0 && v < 1)
-                v = visible_fraction(bvh, sun.direction, g, poly.normal, p, offset, kFine, rays[p]);
+            bool mixed = false;
+            double v = visible_fraction(bvh, glazing, sun.direction, g, poly.normal, p, offset,
+                                        kCoarse, rays[p], mixed);
+            if (mixed)
+                v = visible_fraction(bvh, glazing, sun.direction, g, poly.normal, p, offset, kFine,
+                                     rays[p], mixed);
             leaf_E[p][k] = E * v;
         }
     });
@@ -82,11 +95,11 @@ SunDelivery deliver_sunlight(const Scene& scene, Hierarchy& hierarchy, int threa
 }
 
 dvec3 sun_irradiance(const Scene& scene, const Bvh& bvh, const dvec3& x, const dvec3& n,
-                     std::uint32_t self, double offset) {
+                     std::uint32_t self, double offset, const GlazingTracer* glazing) {
     if (!scene.sun) return dvec3(0.0);
     const double E = scene.sun->irradiance(n);
-    if (!(E > 0) || in_shadow(bvh, scene.sun->direction, x, n, self, offset)) return dvec3(0.0);
-    return dvec3(E);
+    if (!(E > 0)) return dvec3(0.0);
+    return dvec3(E * sun_reaches(bvh, glazing, scene.sun->direction, x, n, self, offset));
 }
 
 } // namespace hemirad

@@ -1,4 +1,5 @@
 // hemirad scene: what was loaded.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -14,6 +15,31 @@ namespace hemirad::cli {
 void print_warnings(const Scene& scene, bool quiet) {
     print_scene_warnings("hemirad", scene, quiet);
 }
+
+namespace {
+
+/// Per glazing group (glazing.h): its panes, their area and transmittance.
+struct GlazingGroup {
+    std::string name;
+    long panes = 0;
+    double area = 0;
+    PaneTransmittance transmittance;
+};
+
+std::vector<GlazingGroup> glazing_groups(const Scene& scene) {
+    std::vector<GlazingGroup> out;
+    for (const GlazingPane& g : scene.glazing) {
+        const std::string& name = scene.groups[g.polygon.group];
+        auto it = std::find_if(out.begin(), out.end(),
+                               [&](const GlazingGroup& o) { return o.name == name; });
+        if (it == out.end()) it = out.insert(out.end(), {name, 0, 0.0, g.transmittance});
+        ++it->panes;
+        it->area += g.polygon.area;
+    }
+    return out;
+}
+
+} // namespace
 
 int cmd_scene(int argc, char** argv) {
     std::string name, obj_out;
@@ -134,6 +160,19 @@ int cmd_scene(int argc, char** argv) {
             o["horizon_blend"] = scene.sky->horizon_blend;
             j["sky"] = o;
         }
+        if (!scene.glazing.empty()) {
+            Json gl = Json::array();
+            for (const GlazingGroup& g : glazing_groups(scene)) {
+                Json o = Json::object();
+                o["group"] = g.name;
+                o["panes"] = g.panes;
+                o["area"] = g.area;
+                o["transmittance"] = g.transmittance.normal;
+                o["angular"] = g.transmittance.angular;
+                gl.push_back(o);
+            }
+            j["glazing"] = gl;
+        }
         Json cams = Json::array();
         for (const Camera& c : scene.cameras) cams.push_back(c.name);
         j["cameras"] = cams;
@@ -188,6 +227,12 @@ int cmd_scene(int argc, char** argv) {
                     sky_model_name(k.model), k.illuminance, k.luminance(k.up), k.ground_reflectance,
                     k.ground_luminance(), k.horizon_blend ? "blended (as Radiance)" : "sharp");
     }
+    for (const GlazingGroup& g : glazing_groups(scene))
+        std::printf(
+            "glazing    %s: %ld pane%s, %.6g unit^2, transmittance %.3g at normal "
+            "incidence%s\n",
+            g.name.c_str(), g.panes, g.panes == 1 ? "" : "s", g.area, g.transmittance.normal,
+            g.transmittance.angular ? ", less at grazing angles (Fresnel)" : " at every angle");
     return 0;
 }
 
