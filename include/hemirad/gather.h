@@ -28,6 +28,13 @@
 // (one shadow ray per emitter, times its exact unoccluded form factor) plus rho H of one
 // more cosine ray from y into the solution.
 //
+// A point whose first `rays` are noisy (a small bright surface in view: the sunlit patch of a
+// floor, a wall beside a spot's pool of light) is gathered again with more rays: the relative
+// standard error of the first estimate is taken from the differences of neighbouring strata
+// (each pair a stratum of two samples, which overstates it for a smooth field); above
+// `indirect_error` the point is gathered anew with (error / indirect_error)^2 times as many
+// rays, at most 16 times `rays`, and that estimate alone is returned.
+//
 // The sky (sky.h) is direct light gathered apart at the point (at() only, not direct_at()):
 // stratified cosine rays that leave the scene bring the sky's or the ground's luminance, with
 // the cells on the edges of openings sampled finer (solver/sky_light.h sky_irradiance). The
@@ -53,7 +60,10 @@ class GlazingTracer;
 class Rng;
 
 struct GatherOptions {
-    int rays = 1024;            ///< indirect: cosine rays per point, 16..65536 (typical 256-4096)
+    int rays = 1024; ///< indirect: cosine rays per point, 16..65536 (typical 256-4096)
+    /// Indirect: gather a point again with more rays (up to 16 x rays) when the relative
+    /// standard error of its first estimate exceeds this; 0 = never. [0, 1)
+    double indirect_error = 0.01;
     double emitter_angle = 0.1; ///< direct: widest emitter cell seen from the point [rad], (0, 1]
     std::uint64_t seed = 1;     ///< generator seed (reproducible)
     /// Direct light: shadow rays to jittered points of the emitter cells (unbiased on average,
@@ -107,6 +117,10 @@ class HEMIRAD_API FinalGather {
   private:
     dvec3 direct(const dvec3& x, const dvec3& n, std::uint32_t self, std::uint64_t seed) const;
     dvec3 indirect(const dvec3& x, const dvec3& n, std::uint32_t self, std::uint64_t seed) const;
+    /// One pass of m x m stratified rays; with relative_error, the estimate's relative
+    /// standard error from the differences of neighbouring strata.
+    dvec3 indirect_pass(const dvec3& x, const dvec3& n, std::uint32_t self, std::uint64_t seed,
+                        int m, double* relative_error) const;
     dvec3 reflected(const dvec3& origin, const dvec3& dir, std::uint32_t self, Rng& rng,
                     bool near_path) const;
     dvec3 direct_sample(const dvec3& y, const dvec3& n, std::uint32_t self, Rng& rng) const;

@@ -36,6 +36,8 @@ void validate_gather_options(const GatherOptions& o) {
         throw InputError("--gather-rays " + std::to_string(o.rays) + " must be in 16..65536");
     if (!(o.emitter_angle > 0 && o.emitter_angle <= 1))
         throw InputError("--gather-angle " + num(o.emitter_angle) + " must be in (0, 1]");
+    if (!(o.indirect_error >= 0 && o.indirect_error < 1))
+        throw InputError("--gather-error " + num(o.indirect_error) + " must be in [0, 1)");
     if (o.sky_cells < 4 || o.sky_cells > 256 || o.sky_split < 1 || o.sky_split > 32)
         throw InputError("gather sky cells " + std::to_string(o.sky_cells) + " and split " +
                          std::to_string(o.sky_split) + " must be in 4..256 and 1..32");
@@ -189,18 +191,40 @@ dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_
 
 dvec3 FinalGather::indirect(const dvec3& x, const dvec3& n, std::uint32_t self,
                             std::uint64_t seed) const {
+    const int m = std::max(1, int(std::lround(std::sqrt(double(options_.rays)))));
+    double error = 0;
+    const dvec3 first = indirect_pass(x, n, self, seed, m, &error);
+    if (!(options_.indirect_error > 0) || !(error > options_.indirect_error)) return first;
+    // Noisy: (error / target)^2 times the rays, that is m * error / target strata a side.
+    const int again = std::min(4 * m, int(std::ceil(m * error / options_.indirect_error)));
+    return indirect_pass(x, n, self, splitmix64(seed + 0x9e3779b97f4a7c15ull), again, nullptr);
+}
+
+dvec3 FinalGather::indirect_pass(const dvec3& x, const dvec3& n, std::uint32_t self,
+                                 std::uint64_t seed, int m, double* relative_error) const {
     Rng rng(seed);
     dvec3 t, b;
     orthonormal_basis(n, t, b);
-    const int m = std::max(1, int(std::lround(std::sqrt(double(options_.rays)))));
     const dvec3 origin = x + offset_ * n;
     dvec3 sum(0.0);
+    // Per stratum pair (i, i + 1) on a row: the squared difference of their sums over RGB.
+    double pair_variance = 0, previous = 0;
     for (int j = 0; j < m; ++j)
         for (int i = 0; i < m; ++i) {
             const double u1 = (i + rng.uniform()) / m, u2 = (j + rng.uniform()) / m;
-            sum += reflected(origin, cosine_direction(n, t, b, u1, u2), self, rng, true);
+            const dvec3 v = reflected(origin, cosine_direction(n, t, b, u1, u2), self, rng, true);
+            sum += v;
+            const double y = v.x + v.y + v.z;
+            if (i % 2 == 1) pair_variance += (y - previous) * (y - previous);
+            previous = y;
         }
-    return sum / double(m * m);
+    const double N = double(m) * double(m);
+    if (relative_error) {
+        // Var(mean) ~ sum over pairs of (a - b)^2 / N^2 (each pair a stratum of two samples).
+        const double total = sum.x + sum.y + sum.z;
+        *relative_error = total > 0 ? std::sqrt(pair_variance) / total : 0.0;
+    }
+    return sum / N;
 }
 
 GatherValue FinalGather::at(const GatherPoint& q, std::uint64_t index) const {

@@ -43,6 +43,9 @@ void add_export_options(ArgParser& args, ExportOptions& o) {
               "sky's horizontal illuminance; needs a \"sky\" in the SCENE.json");
     args.option("--gather-rays", &o.gather_options.rays, "N",
                 "final gather: cosine rays per point for the indirect light (16..65536)");
+    args.option("--gather-error", &o.gather_options.indirect_error, "E",
+                "final gather: a point whose indirect estimate has a relative standard error "
+                "above E is gathered again with up to 16 times the rays [0, 1); 0 = never");
     args.option("--gather-angle", &o.gather_options.emitter_angle, "A",
                 "final gather: widest emitter cell seen from a point, radians (0..1]");
 }
