@@ -15,7 +15,10 @@
 //
 // Point luminaires (photometry.h) add their exact direct irradiance I(d) cos(theta) / (683 r^2)
 // where one shadow ray from the point to the luminaire arrives (a point source casts hard
-// shadows: one ray is exact).
+// shadows: one ray is exact). Nearer than five times the size of a luminaire's luminous opening
+// (LuminousOpening, from its photometric file) the luminaire is an area source: its intensity
+// is shared among points over the opening no farther apart than an eighth of the distance,
+// each with its own shadow ray.
 //
 // Indirect: `rays` cosine-distributed directions, stratified over an m x m grid of the unit
 // square (m = round(sqrt(rays))), each with one jittered sample. A ray that reaches the front
@@ -117,6 +120,10 @@ class HEMIRAD_API FinalGather {
   private:
     dvec3 direct(const dvec3& x, const dvec3& n, std::uint32_t self, std::uint64_t seed) const;
     dvec3 indirect(const dvec3& x, const dvec3& n, std::uint32_t self, std::uint64_t seed) const;
+    /// A luminaire's direct irradiance at x from points spread over its luminous opening (a
+    /// point r away, nearer than five times the opening's size) [W unit^-2].
+    double luminous_opening(const Luminaire& l, const dvec3& x, const dvec3& n, std::uint32_t self,
+                            double r) const;
     /// One pass of m x m stratified rays; with relative_error, the estimate's relative
     /// standard error from the differences of neighbouring strata.
     dvec3 indirect_pass(const dvec3& x, const dvec3& n, std::uint32_t self, std::uint64_t seed,

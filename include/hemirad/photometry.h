@@ -85,9 +85,11 @@ struct HEMIRAD_API IesFile {
     int lamps = 1;
     double lumens_per_lamp = -1; ///< rated lamp lumens; -1: absolute photometry
     double candela_multiplier = 1;
-    int photometric_type = 1;                 ///< 1 = C; 2 = B (converted to C: ies_reader.cpp)
-    int units = 2;                            ///< of the luminous opening: 1 feet, 2 metres
-    double width = 0, length = 0, height = 0; ///< luminous opening (not used: a point source)
+    int photometric_type = 1; ///< 1 = C; 2 = B (converted to C: ies_reader.cpp)
+    int units = 2;            ///< of the luminous opening: 1 feet, 2 metres
+    /// The luminous opening in `units` (negative width: round, diameter |width|); the
+    /// luminaire's LuminousOpening in metres (read_photometric_file).
+    double width = 0, length = 0, height = 0;
     double ballast_factor = 1;
     double ballast_lamp_factor = 1; ///< 1991/1995 only ("future use" in 2002, ignored)
     double input_watts = 0;
@@ -162,11 +164,28 @@ struct HEMIRAD_API EulumdatFile {
 HEMIRAD_API EulumdatFile parse_eulumdat(const std::string& text, const std::string& path);
 HEMIRAD_API EulumdatFile read_eulumdat(const std::string& path);
 
+/// A luminaire's luminous opening (IES LM-63 width, length, height; EULUMDAT lines 16-17), in
+/// metres: flat, in the plane across the luminaire's aim, its length along C = 0 and its width
+/// along C = 90, or a disc of diameter `length` when `round`. Read-outs nearer than five times
+/// its size take the luminaire's light from points spread over it (gather.h), as from an area
+/// source; the solver's shots stay from its centre.
+struct HEMIRAD_API LuminousOpening {
+    double length = 0, width = 0, height = 0; ///< [m]; all 0: a point
+    bool round = false;
+    /// The largest of the three [m] (0: a point source).
+    double size() const;
+    /// The points that stand for it, about `per_side` across (at least 1): the centres of a
+    /// grid of equal cells over the rectangle, or those within the disc, relative to the
+    /// luminaire's position, given its c0 and c90 axes. One point (the centre) for a point.
+    std::vector<glm::dvec3> points(const glm::dvec3& c0, const glm::dvec3& c90, int per_side) const;
+};
+
 /// What a luminaire takes from a photometric file of either format.
 struct HEMIRAD_API PhotometricFile {
     std::string format; ///< "ies" or "ldt"
     CandelaDistribution distribution;
     double rated_lumens = 0; ///< lamp lumens (0: absolute photometry)
+    LuminousOpening opening; ///< from the file's dimensions [m]
     std::vector<std::string> warnings;
 };
 /// Whether `text` is a EULUMDAT file rather than an IES file, by content: an IES file starts
@@ -186,6 +205,7 @@ struct HEMIRAD_API Luminaire {
     double multiplier = 1; ///< scales the intensity (and lumens), >= 0 (0 = off)
     double rated_lumens = 0; ///< lamp lumens of the IES file times multiplier (0: none stated)
     CandelaDistribution distribution; ///< [cd], multiplier not applied
+    LuminousOpening opening;          ///< from the photometric file (a point for the others)
     /// Derived by orient(): the C = 0 and C = 90 directions, unit, perpendicular to aim.
     glm::dvec3 c0{1.0, 0.0, 0.0}, c90{0.0, 0.0, -1.0};
 

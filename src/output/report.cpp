@@ -31,6 +31,14 @@ Json luminaire_json(const Luminaire& l) {
     if (l.rated_lumens > 0) o["rated_lumens"] = l.rated_lumens;
     o["max_candela"] = l.multiplier * l.distribution.max_candela();
     o["symmetry"] = to_string(l.distribution.symmetry);
+    if (l.opening.size() > 0) {
+        Json op = Json::object(); // the luminous opening [m]: an area source up close
+        op["length"] = l.opening.length;
+        op["width"] = l.opening.width;
+        op["height"] = l.opening.height;
+        op["round"] = l.opening.round;
+        o["opening"] = op;
+    }
     return o;
 }
 

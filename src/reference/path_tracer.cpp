@@ -235,7 +235,7 @@ class PathTracer {
     /// The light-sampling half of I_e at x: sum over the sampled emitters of
     /// Ke cos(theta_x) / (p_l + p_b) for unoccluded points facing x.
     dvec3 light_samples(const dvec3& x, const dvec3& n, std::uint32_t ignore, Rng& rng) const {
-        dvec3 sum = point_lights(x, n, ignore);
+        dvec3 sum = point_lights(x, n, ignore, rng);
         if (emitters_.empty()) return sum;
         if (sum_all_) {
             for (const std::uint32_t e : emitters_) sum += light_sample(x, n, ignore, e, rng);
@@ -249,14 +249,36 @@ class PathTracer {
 
     /// Point luminaires (delta lights: no ray can hit one, so light sampling is their only
     /// technique, weight 1): sum over all of I(w) cos(theta_x) / (683 r^2) if unoccluded.
-    dvec3 point_lights(const dvec3& x, const dvec3& n, std::uint32_t ignore) const {
+    /// A luminaire with a luminous opening (LuminousOpening) is, within five times its size,
+    /// an area source: the light comes from a uniformly random point of the opening.
+    dvec3 point_lights(const dvec3& x, const dvec3& n, std::uint32_t ignore, Rng& rng) const {
         double e = 0;
         for (const Luminaire& l : scene_.luminaires) {
-            const double el = l.irradiance(x, n);
-            if (el > 0 && !bvh_.occluded(x, l.position, ignore, kNoPolygon))
-                e += el * panes(x, l.position - x, 1.0);
+            dvec3 y = l.position;
+            if (const double size = l.opening.size();
+                size > 0 && glm::length(x - l.position) < 5 * size)
+                y += opening_point(l, rng);
+            const dvec3 d = x - y;
+            const double r2 = glm::dot(d, d);
+            if (!(r2 > 0)) continue;
+            const dvec3 w = d / std::sqrt(r2);
+            const double cos_x = -glm::dot(n, w);
+            if (!(cos_x > 0)) continue;
+            const double el = l.intensity(w) * cos_x / (kLumensPerWatt * r2);
+            if (el > 0 && !bvh_.occluded(x, y, ignore, kNoPolygon)) e += el * panes(x, y - x, 1.0);
         }
         return dvec3(e + sun(x, n, ignore));
+    }
+
+    /// A uniformly random point of l's opening, relative to its position: the rectangle
+    /// length x width along c0, c90, or the disc of diameter length (by rejection).
+    static dvec3 opening_point(const Luminaire& l, Rng& rng) {
+        const LuminousOpening& o = l.opening;
+        for (;;) {
+            const double a = rng.uniform() - 0.5, b = rng.uniform() - 0.5;
+            if (o.round && a * a + b * b > 0.25) continue;
+            return a * o.length * l.c0 + b * (o.round ? o.length : o.width) * l.c90;
+        }
     }
 
     /// The sun, a delta directional light: E_n/683 (n.s) if the ray x + t s (t > 0) meets

@@ -273,6 +273,7 @@ Luminaire read_luminaire(const Reader& r, const json& j, const std::string& at, 
         l.kind = f.format;
         l.distribution = std::move(f.distribution);
         l.rated_lumens = f.rated_lumens * l.multiplier;
+        l.opening = f.opening;
         for (std::string& w : f.warnings) warnings.push_back(std::move(w));
     } else if (j.contains("candela")) {
         l.kind = "candela";

@@ -24,6 +24,10 @@ constexpr int kPenumbraSplit = 2;  ///< a penumbra cell is re-sampled 4^2 = 16 t
 constexpr int kMaxCellLevel = 3;   ///< at most 8 x 8 coarse cells, 32 x 32 fine ones
 constexpr double kNearLeaves = 3;  ///< hits nearer than this many leaf sizes: evaluated at the hit
 constexpr double kGapLeaves = 0.1; ///< ...and nearer than this: a gap, direct light only
+/// A point nearer a luminaire than this many times its luminous opening's size takes its light
+/// from points spread over the opening (luminous_opening), at most kMaxOpeningSide a side.
+constexpr double kOpeningSizes = 5;
+constexpr int kMaxOpeningSide = 16;
 
 bool nonzero(const dvec3& v) {
     return v.x > 0 || v.y > 0 || v.z > 0;
@@ -122,11 +126,38 @@ dvec3 FinalGather::direct(const dvec3& x, const dvec3& n, std::uint32_t self,
 dvec3 FinalGather::luminaires(const dvec3& x, const dvec3& n, std::uint32_t self) const {
     double e = 0;
     for (const Luminaire& l : h_->scene().luminaires) {
+        const double size = l.opening.size();
+        const double r = glm::length(x - l.position);
+        if (size > 0 && r < kOpeningSizes * size) {
+            e += luminous_opening(l, x, n, self, r);
+            continue;
+        }
         const double el = l.irradiance(x, n);
         if (el > 0 && !bvh_->occluded(x, l.position, self, kNoPolygon))
             e += el * glazing_->between(x, l.position);
     }
     return dvec3(e) + sun_irradiance(h_->scene(), *bvh_, x, n, self, offset_, glazing_.get());
+}
+
+double FinalGather::luminous_opening(const Luminaire& l, const dvec3& x, const dvec3& n,
+                                     std::uint32_t self, double r) const {
+    // Points no farther apart than an eighth of the distance (4 to 16 a side): each stands
+    // for its share of the luminaire, I(d) / count from where it lies.
+    const int per_side =
+        std::clamp(int(std::ceil(8 * l.opening.size() / std::max(r, 1e-9))), 4, kMaxOpeningSide);
+    const std::vector<dvec3> points = l.opening.points(l.c0, l.c90, per_side);
+    double e = 0;
+    for (const dvec3& offset : points) {
+        const dvec3 y = l.position + offset;
+        const dvec3 d = x - y;
+        const double r2 = glm::dot(d, d);
+        if (!(r2 > 0)) continue;
+        const dvec3 w = d / std::sqrt(r2);
+        const double cos_theta = -glm::dot(n, w);
+        if (!(cos_theta > 0) || bvh_->occluded(x, y, self, kNoPolygon)) continue;
+        e += l.intensity(w) * cos_theta / (kLumensPerWatt * r2) * glazing_->between(x, y);
+    }
+    return e / double(points.size());
 }
 
 dvec3 FinalGather::direct_sample(const dvec3& y, const dvec3& n, std::uint32_t self,

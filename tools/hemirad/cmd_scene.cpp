@@ -205,11 +205,18 @@ int cmd_scene(int argc, char** argv) {
         double total = 0;
         for (const Luminaire& l : scene.luminaires) total += l.lumens();
         std::printf("luminaires %zu, %.6g lm installed\n", scene.luminaires.size(), total);
-        for (const Luminaire& l : scene.luminaires)
-            std::printf("  %-12s %-7s %9.6g lm  at (%.4g, %.4g, %.4g), %.6g cd max%s%s\n",
+        for (const Luminaire& l : scene.luminaires) {
+            std::printf("  %-12s %-7s %9.6g lm  at (%.4g, %.4g, %.4g), %.6g cd max%s%s",
                         l.name.c_str(), l.kind.c_str(), l.lumens(), l.position.x, l.position.y,
                         l.position.z, l.multiplier * l.distribution.max_candela(),
                         l.file.empty() ? "" : "  ", l.file.c_str());
+            const LuminousOpening& o = l.opening;
+            if (o.round)
+                std::printf(", opening %.3g m across", o.length);
+            else if (o.size() > 0)
+                std::printf(", opening %.3g x %.3g m", o.length, o.width);
+            std::printf("\n");
+        }
     }
     if (scene.sun) {
         const Sun& s = *scene.sun;
