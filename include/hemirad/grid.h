@@ -95,7 +95,8 @@ HEMIRAD_API std::string grid_summary(const GridResult& g, bool lux, double dayli
 /// enough; points on no polygon grey; the positions of the luminaires in front of the plane
 /// within the grid marked with a cross and their name; a title with Emin, Eavg, Emax, U0 and
 /// Emin/Emax and a colour legend. Values in lux with `lux`, else W/unit².
-/// With a daylight reference E_h > 0 [lux] the title also has the DF summary (grid_summary).
+/// With a daylight reference E_h > 0 [lux] the title also has the DF summary (grid_summary)
+/// and the cells and the legend show the daylight factor DF = 100 E / E_h %.
 HEMIRAD_API Image8 grid_plan_image(const GridResult& g, bool lux,
                                    const std::vector<Luminaire>& luminaires,
                                    double daylight_lux = 0);

@@ -30,7 +30,9 @@ std::string format_value(double v) {
 Image8 grid_plan_image(const GridResult& g, bool lux, const std::vector<Luminaire>& luminaires,
                        double daylight_lux) {
     const int nx = g.spec.nx, ny = g.spec.ny;
-    const double k = lux ? kLumensPerWatt : 1.0;
+    // Daylight factor DF = 100 E / E_h % in the cells when daylight_lux (E_h) is given.
+    const bool df = daylight_lux > 0;
+    const double k = df ? 100 * kLumensPerWatt / daylight_lux : lux ? kLumensPerWatt : 1.0;
     const double hi = k * g.Y_max > 0 ? k * g.Y_max : 1.0;
     // Cells to scale (720 pixels for the longer side), each 3..72 pixels.
     const double longer = std::max({g.width, g.height, 1e-300});
@@ -90,7 +92,10 @@ Image8 grid_plan_image(const GridResult& g, bool lux, const std::vector<Luminair
         draw_text(img, x + 8, y - 4, l.name, red);
     }
     draw_colour_legend(img, kLeft + plan_w + 24, kTop + 12, 16, std::max(plan_h - 24, 80), 0, hi,
-                       lux ? "lux" : "E, W/unit²", false);
+                       df    ? "DF %"
+                       : lux ? "lux"
+                             : "E, W/unit²",
+                       false);
     return img;
 }
 
