@@ -4,41 +4,28 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "hemirad/error.h"
 #include "hemirad/glazing.h"
 #include "hemirad/scene_io.h"
+#include "scene_json_files.h"
 
 using namespace hemirad;
 
 namespace {
 
-namespace fs = std::filesystem;
-
 // A folder with a room of two groups, "floor" (1 quad) and "glass" (2 triangles), and
 // SCENE.json with `glazing` as its "glazing"; returns the SCENE.json path.
 std::string write_scene(const std::string& name, const std::string& glazing) {
-    const fs::path dir = fs::temp_directory_path() / ("hemirad_glazing_test_" + name);
-    fs::create_directories(dir);
-    std::ofstream(dir / "room.obj") << "v 0 0 0\nv 0 0 1\nv 1 0 1\nv 1 0 0\n"
-                                       "v 0 1 1\nv 1 1 1\n"
-                                       "g floor\nf 1 2 3 4\ng glass\nf 2 3 6\nf 2 6 5\n";
-    std::ofstream(dir / "scene.json")
-        << "{\n  \"include\": [\"room.obj\"],\n  \"glazing\": " << glazing << "\n}\n";
-    return (dir / "scene.json").string();
+    return scene_json_files::write_files(
+        "hemirad_glazing_test_" + name,
+        {{"room.obj", "v 0 0 0\nv 0 0 1\nv 1 0 1\nv 1 0 0\nv 0 1 1\nv 1 1 1\n"
+                      "g floor\nf 1 2 3 4\ng glass\nf 2 3 6\nf 2 6 5\n"},
+         {"scene.json", "{\n  \"include\": [\"room.obj\"],\n  \"glazing\": " + glazing + "\n}\n"}});
 }
 
-std::string load_error(const std::string& path) {
-    try {
-        load_scene_json(path);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+using scene_json_files::load_error;
 
 } // namespace
 

@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -20,13 +18,13 @@
 #include "hemirad/reference.h"
 #include "hemirad/scene_io.h"
 #include "hemirad/sky.h"
+#include "scene_json_files.h"
 #include "solver/sky_light.h"
 
 using namespace hemirad;
 
 namespace {
 
-namespace fs = std::filesystem;
 constexpr double kPi = std::numbers::pi;
 
 constexpr SkyModel kModels[] = {SkyModel::CieOvercast, SkyModel::CieClear,
@@ -72,21 +70,13 @@ const double kOvercastVertical = 3.0 / 14.0 + 4.0 / (7.0 * kPi);
 // A folder with a 1 m floor (floor.obj) and a SCENE.json with `body` after "include";
 // returns its path.
 std::string write_scene(const std::string& name, const std::string& body) {
-    const fs::path dir = fs::temp_directory_path() / ("hemirad_sky_test_" + name);
-    fs::create_directories(dir);
-    std::ofstream(dir / "floor.obj") << "v 0 0 0\nv 0 0 1\nv 1 0 1\nv 1 0 0\nf 1 2 3 4\n";
-    std::ofstream(dir / "scene.json") << "{\n  \"include\": [\"floor.obj\"],\n" << body << "\n}\n";
-    return (dir / "scene.json").string();
+    return scene_json_files::write_files(
+        "hemirad_sky_test_" + name,
+        {{"floor.obj", scene_json_files::kFloorObj},
+         {"scene.json", "{\n  \"include\": [\"floor.obj\"],\n" + body + "\n}\n"}});
 }
 
-std::string load_error(const std::string& path) {
-    try {
-        load_scene_json(path);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+using scene_json_files::load_error;
 
 } // namespace
 

@@ -4,19 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "hemirad/error.h"
 #include "hemirad/scene_io.h"
 #include "hemirad/sun.h"
+#include "scene_json_files.h"
 
 using namespace hemirad;
 
 namespace {
-
-namespace fs = std::filesystem;
 
 void expect_near(const glm::dvec3& a, const glm::dvec3& b, double tol) {
     EXPECT_NEAR(a.x, b.x, tol);
@@ -28,23 +25,13 @@ void expect_near(const glm::dvec3& a, const glm::dvec3& b, double tol) {
 // top-level keys); returns the SCENE.json path.
 std::string write_scene(const std::string& name, const std::string& sun,
                         const std::string& extra = "") {
-    const fs::path dir = fs::temp_directory_path() / ("hemirad_sun_test_" + name);
-    fs::create_directories(dir);
-    std::ofstream(dir / "floor.obj") << "v 0 0 0\nv 0 0 1\nv 1 0 1\nv 1 0 0\nf 1 2 3 4\n";
-    std::ofstream(dir / "scene.json") << "{\n  \"include\": [\"floor.obj\"],\n"
-                                      << extra << "  \"sun\": " << sun << "\n}\n";
-    return (dir / "scene.json").string();
+    return scene_json_files::write_files(
+        "hemirad_sun_test_" + name, {{"floor.obj", scene_json_files::kFloorObj},
+                                     {"scene.json", "{\n  \"include\": [\"floor.obj\"],\n" + extra +
+                                                        "  \"sun\": " + sun + "\n}\n"}});
 }
 
-// The message of the InputError that loading gives, or "" when it loads.
-std::string load_error(const std::string& path) {
-    try {
-        load_scene_json(path);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+using scene_json_files::load_error;
 
 } // namespace
 
