@@ -41,6 +41,7 @@
 #include "mpi_scaling.h"
 #include "point_stats.h"
 #include "real_building.h"
+#include "viewer_frames.h"
 
 // The bare hemicube is measured with the renderer itself where the build exposes src/ to
 // this tool (target_include_directories(hemirad-bench PRIVATE src)); otherwise from the
@@ -177,6 +178,11 @@ std::vector<Spec> experiments() {
     v.push_back({"incremental",
                  "office.json to 0.1 %, D2 off and S1 halved: re-converge vs fresh solve, floor "
                  "12x8",
+                 cornell});
+    // The viewer's frame time while it solves a 1e5-triangle scene (viewer_frames.cpp).
+    v.push_back({"viewer_frames",
+                 "hemirad-view on a furnished floor of ~1e5 triangles: frame time while 40 "
+                 "shots solve",
                  cornell});
     // Scaling: seconds per shot vs leaf patches at 402 polygons, at a fixed hemicube
     // resolution (256) so that the pixels shaded stay the same and what grows is the
@@ -506,6 +512,7 @@ void run_child(const Spec& spec, const std::string& office) {
     if (spec.name == "mpi_scaling") return bench::run_mpi_scaling();
     if (spec.name == "real_building") return bench::run_real_building(office);
     if (spec.name == "incremental") return bench::run_incremental(HEMIRAD_BENCH_LIGHTING_OFFICE);
+    if (spec.name == "viewer_frames") return bench::run_viewer_frames();
     auto context = gl::Context::create();
     std::string obj_path;
     std::uintmax_t obj_bytes = 0;

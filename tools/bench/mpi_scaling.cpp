@@ -23,23 +23,13 @@
 #include "hemirad/error.h"
 #include "hemirad/json.h"
 #include "parallel/world.h"
+#include "sibling.h"
 
 namespace hemirad::bench {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string hemirad_path() {
-    char buf[4096];
-    const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
-    if (n <= 0) throw RuntimeError("mpi_scaling: cannot read /proc/self/exe");
-    buf[n] = 0;
-    const fs::path p = fs::path(buf).parent_path() / "hemirad";
-    if (!fs::exists(p))
-        throw RuntimeError("mpi_scaling: no hemirad next to hemirad-bench: " + p.string());
-    return p.string();
-}
 
 /// Runs one solve (ranks = 0: without mpirun) and returns its report.
 nlohmann::json solve(const std::string& hemirad, int ranks, const fs::path& dir) {
@@ -117,7 +107,7 @@ void run_mpi_scaling() {
     if (const char* spec = std::getenv("HEMIRAD_BENCH_MPI_PROBE")) return run_probe(spec);
     if (std::system("command -v mpirun > /dev/null") != 0)
         throw RuntimeError("mpi_scaling: mpirun not found (Debian: openmpi-bin)");
-    const std::string hemirad = hemirad_path();
+    const std::string hemirad = sibling_tool("hemirad", "mpi_scaling");
     const fs::path dir = fs::temp_directory_path() / ("hemirad-mpi-" + std::to_string(getpid()));
     fs::create_directories(dir);
     const nlohmann::json alone = solve(hemirad, 0, dir);
