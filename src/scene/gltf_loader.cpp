@@ -12,6 +12,7 @@
 // element ("accessor 3"), never a crash.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -397,6 +398,20 @@ class GltfReader {
             dvec3 Ke(0.0);
             if (e.size() >= 3) Ke = dvec3(e[0], e[1], e[2]);
             double strength = 1.0;
+            // Glass (KHR_materials_transmission) is drawn opaque: a material does not say
+            // whether its surfaces are panes; SCENE.json "glazing" does (glazing.h).
+            if (const auto t = g.extensions.find("KHR_materials_transmission");
+                t != g.extensions.end() && t->second.Has("transmissionFactor") &&
+                t->second.Get("transmissionFactor").IsNumber() &&
+                t->second.Get("transmissionFactor").GetNumberAsDouble() > 0) {
+                char factor[32];
+                std::snprintf(factor, sizeof factor, "%.3g",
+                              t->second.Get("transmissionFactor").GetNumberAsDouble());
+                warnings_.push_back(path_ + ": material '" + mat.name +
+                                    "' transmits (KHR_materials_transmission " + factor +
+                                    "): its surfaces are opaque here; to let light through "
+                                    "them, name their groups in a SCENE.json \"glazing\"");
+            }
             const auto ext = g.extensions.find("KHR_materials_emissive_strength");
             if (ext != g.extensions.end() && ext->second.Has("emissiveStrength")) {
                 const tinygltf::Value& v = ext->second.Get("emissiveStrength");
