@@ -320,6 +320,9 @@ class HEMIRAD_API Solver {
     StopReason stop_ = StopReason::Running;
     dvec3 emitted_{0.0}, absorbed_{0.0}, escaped_{0.0};
     dvec3 peak_emitted_{0.0}; ///< the most emitted before and after edits (incremental.cpp)
+    /// What the sun and the sky delivered before the first shot (init()), part of emitted_:
+    /// not the scene's to change, so an edit keeps it (apply_photometry).
+    dvec3 daylight_{0.0};
     double rho_max_ = 0;
     double min_size_ = 0;
     double max_size_ = 0;

@@ -87,11 +87,12 @@ std::pair<std::size_t, std::size_t> Solver::apply_photometry(const Photometry& b
         absorbed_ -= drho * hierarchy_.add_unshot(p, drho, dBe);
         ++polygons;
     }
-    dvec3 before_emitted(0.0); // the scene's emitted power before the edits
+    // The emitted power before the edits and now; the sun's and the sky's are not edited.
+    dvec3 before_emitted = daylight_;
     for (std::size_t p = 0; p < before.exitance.size(); ++p)
         before_emitted += before.exitance[p] * scene_->polygons[p].area;
     for (const dvec3& power : before.luminaires) before_emitted += power;
-    emitted_ = scene_->emitted_power();
+    emitted_ = scene_->emitted_power() + daylight_;
     peak_emitted_ = glm::max(peak_emitted_, glm::max(before_emitted, emitted_));
     rho_max_ = scene_->max_reflectance();
     check_stop();

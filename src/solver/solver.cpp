@@ -119,12 +119,12 @@ void Solver::init() {
     // The sun's direct light, once, before the first shot (sun_light.h): what it delivers is
     // emitted power, its reflected part the leaves' unshot power.
     const SunDelivery sun = deliver_sunlight(*scene_, hierarchy_);
-    emitted_ += sun.power;
     absorbed_ += sun.absorbed;
     // The sky's (and the ground's) likewise (sky_light.h).
     const SkyDelivery sky = deliver_skylight(*scene_, hierarchy_);
-    emitted_ += sky.power;
     absorbed_ += sky.absorbed;
+    daylight_ = sun.power + sky.power;
+    emitted_ += daylight_;
     rho_max_ = scene_->max_reflectance();
     // Default minimum shooter size: the size of the smallest leaf patches' polygons' leaves.
     max_size_ = options_.shooter_max_size > 0 ? options_.shooter_max_size : 1e300;
