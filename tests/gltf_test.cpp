@@ -161,7 +161,7 @@ TEST(Gltf, AssetRoomLoadsWithTextureCameraAndLight) {
 // KHR_lights_punctual: point and spot lights become luminaires at their nodes' world
 // positions (the parent's transform composed), a spot aimed down its node's -z with the
 // extension's cone; names from the light, else the node, else light<k>; colour scales by its
-// luminance with a warning; directional lights are warned and skipped.
+// luminance with a warning; the first directional light becomes the sun.
 TEST(Gltf, PunctualLightsBecomeLuminaires) {
     const double rig[3] = {1, 0, -2};
     const std::string half_turn_x = "\"rotation\": [1, 0, 0, 0]"; // 180 degrees about x
@@ -175,7 +175,9 @@ TEST(Gltf, PunctualLightsBecomeLuminaires) {
           "\"outerConeAngle\": 0.4}}",
           "\"translation\": [0, 3, 0], \"rotation\": [-0.7071067811865476, 0, 0, "
           "0.7071067811865476]"},
-         {"{\"type\": \"directional\", \"intensity\": 5, \"name\": \"sun\"}", half_turn_x}});
+         {"{\"type\": \"directional\", \"intensity\": 5000, \"name\": \"sun\"}",
+          "\"rotation\": [-0.3826834323650898, 0, 0, 0.9238795325112867]"},
+         {"{\"type\": \"directional\", \"intensity\": 9, \"name\": \"moon\"}", half_turn_x}});
     const Scene s = load_gltf(file);
     ASSERT_EQ(s.luminaires.size(), 3u);
     const Luminaire& bulb = s.luminaires[0];
@@ -205,7 +207,14 @@ TEST(Gltf, PunctualLightsBecomeLuminaires) {
     // Between: (t)^2 with t linear in cos(gamma), within the tabulation's 0.05 %.
     const double t = (std::cos(0.3) - std::cos(0.4)) / (std::cos(0.2) - std::cos(0.4));
     EXPECT_NEAR(spot.intensity(towards(0.3 * deg)), 1000 * t * t, 0.5);
-    EXPECT_TRUE(has_warning(s, "directional light sun: not supported yet (ignored)"));
+    // The first directional light is the sun: -45 degrees about x turns +z (towards the sun)
+    // to (0, sin 45, cos 45): altitude 45 due south (+z); 5000 lux. The second is warned.
+    ASSERT_TRUE(s.sun.has_value());
+    expect_near(s.sun->direction, {0, std::sqrt(0.5), std::sqrt(0.5)}, "sun");
+    EXPECT_NEAR(s.sun->altitude_deg, 45, 1e-9);
+    EXPECT_NEAR(s.sun->azimuth_deg, 180, 1e-9);
+    EXPECT_EQ(s.sun->illuminance, 5000);
+    EXPECT_TRUE(has_warning(s, "light 4 ('moon'): a second directional light is ignored"));
     EXPECT_FALSE(has_warning(s, "extensions not read"));
 }
 

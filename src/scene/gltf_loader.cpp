@@ -273,10 +273,34 @@ class GltfReader {
         stack.pop_back();
     }
 
+    /// A directional light becomes the scene's sun (sun.h): its light travels down the node's
+    /// -z, so the sun lies along +z; `lux` its normal illuminance. One sun: a second
+    /// directional light is warned and skipped.
+    void add_sun(Scene& scene, const std::string& nname, const std::string& what, double lux,
+                 const glm::dmat4& world) {
+        const dvec3 towards = dvec3(world * glm::dvec4(0, 0, 1, 0));
+        const double length = glm::length(towards);
+        if (!std::isfinite(length) || !(length > 0))
+            throw error(nname + ": the transform of " + what + " has no direction (+z is 0)");
+        if (scene.sun) {
+            warn_once("second sun", what + ": a second directional light is ignored (one sun)");
+            return;
+        }
+        Sun sun;
+        sun.direction = towards / length;
+        sun.illuminance = lux;
+        SkyFrame().angles(sun.direction, sun.altitude_deg, sun.azimuth_deg);
+        if (!(sun.altitude_deg > 0))
+            warn_once("sun below", what + ": the directional light shines upwards (the sun "
+                                          "below the horizon): it lights nothing");
+        scene.sun = sun;
+    }
+
     /// KHR_lights_punctual: a point or spot light at the node becomes a luminaire (photometry.h)
     /// of the light's intensity [cd] times the luminance of its colour (luminaires are white);
-    /// a spot points down the node's -z with gltf_spot_distribution(). Directional lights are
-    /// warned and skipped; `range` is ignored (physical inverse-square falloff).
+    /// a spot points down the node's -z with gltf_spot_distribution(). A directional light
+    /// becomes the sun (add_sun), its intensity [lux] times the colour's luminance. `range` is
+    /// ignored (physical inverse-square falloff).
     void add_light(Scene& scene, int index, const tinygltf::Node& node, const tinygltf::Value& ext,
                    const glm::dmat4& world) {
         const std::string nname = "node " + std::to_string(index);
@@ -292,12 +316,8 @@ class GltfReader {
                  : !node.name.empty() ? node.name
                                       : "light" + std::to_string(k);
         const std::string what = "light " + std::to_string(k) + " ('" + l.name + "')";
-        if (g.type == "directional") {
-            warn_once("directional " + std::to_string(k),
-                      "directional light " + l.name + ": not supported yet (ignored)");
-            return;
-        }
-        if (g.type != "point" && g.type != "spot")
+        const bool directional = g.type == "directional";
+        if (!directional && g.type != "point" && g.type != "spot")
             throw error(what + ": unknown type '" + g.type + "' (point, spot or directional)");
         dvec3 colour(1.0);
         if (g.color.size() == 3)
@@ -308,7 +328,8 @@ class GltfReader {
             if (!std::isfinite(colour[c]) || colour[c] < 0)
                 throw error(what + ": color " + num(colour[c]) + " must be a number >= 0");
         if (!std::isfinite(g.intensity) || g.intensity < 0)
-            throw error(what + ": intensity " + num(g.intensity) + " must be >= 0 (candela)");
+            throw error(what + ": intensity " + num(g.intensity) + " must be >= 0 (" +
+                        (directional ? "lux" : "candela") + ")");
         // Luminance weights of linear sRGB (Rec. 709), as --lux uses.
         const double y = 0.2126 * colour.x + 0.7152 * colour.y + 0.0722 * colour.z;
         if (colour.x != colour.y || colour.y != colour.z)
@@ -318,6 +339,7 @@ class GltfReader {
                           ") is not modelled (luminaires are white): its "
                           "luminance " +
                           num(y) + " scales the intensity");
+        if (directional) return add_sun(scene, nname, what, g.intensity * y, world);
         const double candela = g.intensity * y;
         l.position = dvec3(world * glm::dvec4(0, 0, 0, 1));
         l.aim = dvec3(world * glm::dvec4(0, 0, -1, 0)); // a spot shines down its local -z

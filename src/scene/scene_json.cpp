@@ -232,6 +232,7 @@ void merge(Scene& out, const Scene& part) {
     }
     out.cameras.insert(out.cameras.end(), part.cameras.begin(), part.cameras.end());
     out.luminaires.insert(out.luminaires.end(), part.luminaires.begin(), part.luminaires.end());
+    if (part.sun && !out.sun) out.sun = part.sun; // a glTF directional light (the first)
     for (const std::string& w : part.warnings)
         if (w.rfind(kNoEmitterWarning, 0) != 0) out.warnings.push_back(w);
 }
