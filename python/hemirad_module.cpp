@@ -366,7 +366,24 @@ PYBIND11_MODULE(hemirad, m) {
             },
             py::arg("name"), py::arg("multiplier"),
             "Sets a luminaire's multiplier (0 = off); solve() then re-converges incrementally "
-            "from the current solution (the difference of its power is shot).")
+            "from the current solution (with light layers, the default for up to 16 "
+            "luminaires, its share is rescaled at once; else the difference of its power is "
+            "shot).")
+        .def(
+            "place_luminaire",
+            [](PySolver& s, const std::string& name, const py::handle& position,
+               const py::handle& aim) {
+                const auto xyz = [](const py::handle& obj, const char* what) {
+                    const std::vector<double> v = obj.cast<std::vector<double>>();
+                    if (v.size() != 3)
+                        throw py::value_error(std::string(what) + " must be (x, y, z)");
+                    return dvec3(v[0], v[1], v[2]);
+                };
+                s.solver().place_luminaire(name, xyz(position, "position"), xyz(aim, "aim"));
+            },
+            py::arg("name"), py::arg("position"), py::arg("aim"),
+            "Moves and aims a luminaire; its light leaves its old place at once and solve() "
+            "shoots it from the new one (needs light layers: options light_layers).")
         .def(
             "set_reflectance",
             [](PySolver& s, const std::string& group, const py::handle& rho) {

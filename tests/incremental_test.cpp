@@ -5,7 +5,9 @@
 //    emission) and re-converged, equals a fresh solve of the edited scene within the error
 //    bounds of the two;
 //  - a multiplier of 0 removes a light completely;
-//  - the energy balance closes across an edit; bad edits are refused naming the value.
+//  - the energy balance closes across an edit; bad edits are refused naming the value;
+//  - with light layers (light_layers.h), a luminaire's multiplier edit is exact at once: the
+//    solution equals a fresh solve's with (nearly) no shot, also through a solution file.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +16,7 @@
 #include "hemirad/gather.h"
 #include "hemirad/report.h"
 #include "hemirad/scene_edit.h"
+#include "hemirad/solution_file.h"
 #include "hemirad/solver.h"
 
 using namespace hemirad;
@@ -60,9 +63,11 @@ Scene room(bool panel = true, bool b = true) {
 }
 
 // Shooting from the leaves (flat): both solves then converge to the same discrete solution B*
-// (the same form factors), and each is within its error bound of it.
-SolverOptions options(double tolerance) {
+// (the same form factors), and each is within its error bound of it. Light layers off by
+// default: the tests below then check the shooting of differences; "on" the layers.
+SolverOptions options(double tolerance, const char* layers = "off") {
     SolverOptions o;
+    o.light_layers = layers;
     o.ff = "reference";
     o.tolerance = tolerance;
     o.flat = true;
@@ -109,6 +114,7 @@ struct EditCase {
     const char* name;
     void (*solver_edit)(Solver&);
     void (*scene_edit)(Scene&);
+    bool luminaires_only = false; ///< light layers make the edit exact, with no shot
 };
 
 class IncrementalEqualsFresh : public ::testing::TestWithParam<EditCase> {};
@@ -119,20 +125,30 @@ class IncrementalEqualsFresh : public ::testing::TestWithParam<EditCase> {};
 // leaf (1/97 of the area): 2 tol Phi / A_leaf, about 1 % of the mean radiosity here (whose
 // power, B_mean A, is of the order of Phi in this closed room). Measured: the L1 difference
 // 1-2 % of its bound, leaves within 1e-5 of the mean.
-TEST_P(IncrementalEqualsFresh, WithinBothErrorBounds) {
-    const EditCase& c = GetParam();
+//
+// With light layers the same bounds hold, and an edit of luminaires' multipliers only takes at
+// most a twentieth of a fresh solve's shots: the layers' residual unshot power is rescaled with
+// them, so the bound moves only as the share of the rest (here the panel's) in the emitted
+// power does (measured: no shot for "multiplier" and "raise"). The "all" edit's luminaire is
+// rescaled too, but its reflectance and emission edits are shot.
+void edit_and_compare(const EditCase& c, const char* layers) {
+    SCOPED_TRACE(std::string(c.name) + ", light layers " + layers);
     const double tol = 1e-4;
     Scene base = room();
-    Solver inc(base, options(tol));
+    Solver inc(base, options(tol, layers));
+    ASSERT_EQ(inc.has_light_layers(), std::string(layers) == "on");
     solve(inc);
     const long base_shots = inc.shots();
     c.solver_edit(inc);
-    EXPECT_FALSE(inc.converged()) << "an edit must leave unshot power";
+    if (!inc.has_light_layers() || !c.luminaires_only)
+        EXPECT_FALSE(inc.converged()) << "an edit must leave unshot power";
     solve(inc);
     Scene edited = room();
     c.scene_edit(edited);
     Solver fresh(edited, options(tol));
     solve(fresh);
+    if (inc.has_light_layers() && c.luminaires_only)
+        EXPECT_LE(20 * (inc.shots() - base_shots), fresh.shots());
     const double phi =
         std::max({edited.emitted_power().x, edited.emitted_power().y, edited.emitted_power().z});
     const Difference d = difference(inc, fresh);
@@ -148,13 +164,31 @@ TEST_P(IncrementalEqualsFresh, WithinBothErrorBounds) {
     for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(balance[ch], unshot[ch], 1e-4 * phi) << c.name;
 }
 
+TEST_P(IncrementalEqualsFresh, WithinBothErrorBounds) {
+    edit_and_compare(GetParam(), "off");
+}
+
+TEST_P(IncrementalEqualsFresh, WithLightLayers) {
+    edit_and_compare(GetParam(), "on");
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Edits, IncrementalEqualsFresh,
     ::testing::Values(
         EditCase{"multiplier", [](Solver& s) { s.set_luminaire_multiplier("A", 0.3); },
-                 [](Scene& s) { set_luminaire_multiplier(s, "A", 0.3); }},
+                 [](Scene& s) { set_luminaire_multiplier(s, "A", 0.3); }, true},
         EditCase{"raise", [](Solver& s) { s.set_luminaire_multiplier("B", 2.5); },
-                 [](Scene& s) { set_luminaire_multiplier(s, "B", 2.5); }},
+                 [](Scene& s) { set_luminaire_multiplier(s, "B", 2.5); }, true},
+        EditCase{"both_dimmed",
+                 [](Solver& s) {
+                     s.set_luminaire_multiplier("A", 0.6);
+                     s.set_luminaire_multiplier("B", 0.5);
+                 },
+                 [](Scene& s) {
+                     set_luminaire_multiplier(s, "A", 0.6);
+                     set_luminaire_multiplier(s, "B", 0.5);
+                 },
+                 true},
         EditCase{"reflectance", [](Solver& s) { s.set_reflectance("walls", dvec3(0.2, 0.8, 0.4)); },
                  [](Scene& s) { set_group_reflectance(s, "walls", dvec3(0.2, 0.8, 0.4)); }},
         EditCase{"emission", [](Solver& s) { s.set_emission("panel", dvec3(0.05, 0.6, 0.2)); },
@@ -203,6 +237,111 @@ TEST(IncrementalOff, MultiplierZeroRemovesTheLight) {
     const Hierarchy& h = s.solution();
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
         EXPECT_LT(std::abs(h.irradiance({p, 0, 0}).x), 0.01 * before[1]) << "polygon " << p;
+}
+
+// Light layers through edits that they cannot rescale and a solution file:
+//  - a luminaire switched off and on again (from 0, its light is shot, into its layer), then
+//    dimmed (rescaled), after a reflectance edit (every layer's share reflected anew);
+//  - the same state saved to bytes and resumed in a new solver, then dimmed there: the layers
+//    come back with the file, so the dimming takes no shot either.
+// Each against a fresh solve of the edited scene, within the bounds of WithinBothErrorBounds.
+TEST(LightLayers, OffOnDimmedAndResumedEqualFresh) {
+    const double tol = 1e-4;
+    Scene scene = room();
+    Solver s(scene, options(tol, "on"));
+    solve(s);
+    s.set_luminaire_multiplier("A", 0);
+    s.set_reflectance("walls", dvec3(0.3));
+    solve(s);
+    s.set_luminaire_multiplier("A", 1);
+    EXPECT_FALSE(s.converged()) << "from off, A's light must be shot";
+    solve(s);
+    const std::string bytes = solution_bytes(s);
+    const long shots = s.shots();
+    s.set_luminaire_multiplier("A", 0.4);
+    EXPECT_EQ(s.rescaled_luminaires(), 2); // A to 0, then to 0.4; not 0 -> 1
+    solve(s);
+    EXPECT_LE(20 * (s.shots() - shots), shots);
+
+    Scene edited = room();
+    set_group_reflectance(edited, "walls", dvec3(0.3));
+    set_luminaire_multiplier(edited, "A", 0.4);
+    Solver fresh(edited, options(tol));
+    solve(fresh);
+    const double phi =
+        std::max({edited.emitted_power().x, edited.emitted_power().y, edited.emitted_power().z});
+    Difference d = difference(s, fresh);
+    EXPECT_LE(d.l1, 2 * tol * phi);
+    EXPECT_LE(d.leaf, 0.01);
+
+    // Resumed from the bytes saved before the dimming, in a scene with A at 0.4 already.
+    Scene resumed_scene = room();
+    set_group_reflectance(resumed_scene, "walls", dvec3(0.3));
+    set_luminaire_multiplier(resumed_scene, "A", 0.4);
+    Solver resumed(resumed_scene, options(tol, "on"));
+    const SolutionFile file = parse_solution(bytes, "test.sol");
+    ASSERT_EQ(file.state.layers.size(), 2u);
+    const ResumeEdits edits = resume_solution(resumed, file, "test.sol");
+    EXPECT_EQ(edits.luminaires, 1u);
+    EXPECT_EQ(edits.rescaled, 1u);
+    solve(resumed);
+    EXPECT_LE(20 * (resumed.shots() - shots), shots);
+    d = difference(resumed, fresh);
+    EXPECT_LE(d.l1, 2 * tol * phi);
+    EXPECT_LE(d.leaf, 0.01);
+    // A solver without layers resumes the same file and shoots the dimming instead.
+    Solver plain(resumed_scene, options(tol, "off"));
+    EXPECT_EQ(resume_solution(plain, file, "test.sol").rescaled, 0u);
+    EXPECT_FALSE(plain.converged());
+}
+
+// A luminaire moved and re-aimed: its light leaves the old place at once (its layer), and is
+// shot from the new one; the re-converged solution equals a fresh solve of the moved scene
+// within the bounds above. Without light layers the move is refused; bad values are named.
+TEST(LightLayers, MovedLuminaireEqualsFresh) {
+    const double tol = 1e-4;
+    const dvec3 position(2.2, 2.0, 1.4), aim(0.3, -1, 0.2);
+    Scene scene = room();
+    Solver s(scene, options(tol, "on"));
+    solve(s);
+    s.place_luminaire("A", position, aim);
+    EXPECT_FALSE(s.converged());
+    solve(s);
+    Scene moved = room();
+    set_luminaire_placement(moved, "A", position, aim);
+    EXPECT_NE(moved.geometry_hash(), room().geometry_hash());
+    EXPECT_EQ(scene.geometry_hash(), moved.geometry_hash()); // the solver's scene moved it too
+    Solver fresh(moved, options(tol));
+    solve(fresh);
+    const double phi =
+        std::max({moved.emitted_power().x, moved.emitted_power().y, moved.emitted_power().z});
+    const Difference d = difference(s, fresh);
+    EXPECT_LE(d.l1, 2 * tol * phi);
+    EXPECT_LE(d.leaf, 0.01);
+    const dvec3 balance = s.emitted_power() - s.absorbed_power() - s.escaped_power();
+    dvec3 unshot = s.hierarchy().total_unshot_power();
+    for (const dvec3& u : s.luminaire_unshot()) unshot += u;
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(balance[ch], unshot[ch], 1e-4 * phi);
+
+    Scene other = room();
+    Solver plain(other, options(tol, "off"));
+    const auto message = [](auto&& f) -> std::string {
+        try {
+            f();
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "(no error)";
+    };
+    EXPECT_NE(message([&] { plain.place_luminaire("A", position, aim); }).find("light layers"),
+              std::string::npos);
+    EXPECT_NE(message([&] { s.place_luminaire("A", position, dvec3(0.0)); }).find("luminaire A"),
+              std::string::npos);
+    EXPECT_NE(message([&] { s.place_luminaire("Z", position, aim); }).find("no luminaire named"),
+              std::string::npos);
+    EXPECT_NE(message([&] { s.place_luminaire("A", dvec3(NAN), aim); }).find("finite"),
+              std::string::npos);
+    EXPECT_EQ(scene.luminaires[0].position, position) << "a refused move changes nothing";
 }
 
 TEST(IncrementalEdits, BadEditsNameTheValue) {

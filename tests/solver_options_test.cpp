@@ -138,9 +138,11 @@ TEST(SolverOptions, SolutionFilesKeepEveryOptionThatChangesResults) {
         else
             not_saved.insert(option.flag);
     }
-    // Free to change on resume: the stop criteria and where the solve runs.
-    EXPECT_EQ(not_saved, (std::set<std::string>{"--tolerance", "--max-shots", "--time-limit",
-                                                "--memory-limit", "--backend", "--device"}));
+    // Free to change on resume: the stop criteria, where the solve runs, and whether light
+    // layers are kept (the solution is the same; the file's state holds the layers or not).
+    EXPECT_EQ(not_saved,
+              (std::set<std::string>{"--tolerance", "--max-shots", "--time-limit", "--memory-limit",
+                                     "--backend", "--device", "--light-layers"}));
     // The spelling of the files saved so far: the command line's, values exact.
     const SolverOptions defaults;
     const std::vector<SolutionOption> d = solution_options(defaults);

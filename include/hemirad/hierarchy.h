@@ -69,6 +69,15 @@ class HEMIRAD_API Hierarchy {
     /// polygon is push-pulled. Returns the irradiance power it has received, H*area [W].
     dvec3 add_unshot(std::uint32_t polygon, const dvec3& drho, const dvec3& dBe);
 
+    /// Multiplies every node's received and unshot light (H, dB, dI) and every polygon's
+    /// unshot power by s (a light layer's luminaire dimmed: Solver, light_layers.h); s = 0
+    /// empties the hierarchy, emission included. Dirty flags are kept (s = 0 clears them).
+    void scale(double s);
+    /// Adds s times `other`'s received and unshot light, node by node, and its unshot powers;
+    /// a polygon dirty in either is dirty. `other` must be a hierarchy of the same scene and
+    /// discretisation (checked by size).
+    void add_scaled(const Hierarchy& other, double s);
+
     /// Sets the unshot radiosity of the subtree under `a` to zero (it has been shot) and
     /// updates its ancestors and the polygon's unshot power. Requires a pushed polygon.
     void clear_unshot(const PatchAddress& a);

@@ -21,6 +21,13 @@ namespace hemirad {
 /// or a multiplier that is negative or not finite.
 HEMIRAD_API std::size_t set_luminaire_multiplier(Scene& scene, const std::string& name,
                                                  double multiplier);
+/// Moves and aims the luminaire named `name`: its position [scene units] and its aim (the
+/// photometric nadir; normalised, Luminaire::orient()). A change of the scene's geometry
+/// (Scene::geometry_hash()): a solver follows it with Solver::place_luminaire(). Returns its
+/// index. Throws InputError naming the luminaire for an unknown name, a position that is not
+/// finite, or an aim that is zero or not finite.
+HEMIRAD_API std::size_t set_luminaire_placement(Scene& scene, const std::string& name,
+                                                const dvec3& position, const dvec3& aim);
 /// Sets the reflectance of every polygon of surface group `group` (each channel in [0, 1)):
 /// a material used only by the group is changed, one shared with other groups is copied for
 /// the group (named "MATERIAL [GROUP]"). Throws InputError for an unknown group, a value out

@@ -32,6 +32,11 @@
 // Version 4 keeps the geometry apart from the photometry (scene_edit.h): a solution resumes
 // for a scene of the same geometry whose materials' reflectance or emission or luminaires'
 // multipliers differ, and re-converges from it (incremental re-solving, solver.h).
+//             ...   u32 light layer count K (0: none), then per layer (a luminaire's share of
+//                   the solution, light_layers.h; version 5): N*36 nodes as above, P*25
+//                   polygons as above, f64[3] absorbed, f64[3] escaped power
+//
+// Version 5's layers let a luminaire's multiplier change on resume with no shot.
 //     end-8   8     u64 FNV-1a 64 hash of every byte before it (detects corruption)
 //
 // (str = u32 byte length + bytes.) A file that is truncated, corrupt, of another version or
@@ -49,7 +54,7 @@
 
 namespace hemirad {
 
-inline constexpr std::uint32_t kSolutionFileVersion = 4;
+inline constexpr std::uint32_t kSolutionFileVersion = 5;
 
 /// An option that affects results, as (command-line name, exact value text).
 using SolutionOption = std::pair<std::string, std::string>;
@@ -97,6 +102,9 @@ HEMIRAD_API void check_solution_scene(const SolutionFile& file, const std::strin
 /// the saved one (Solver::apply_photometry()); none for a resume of the same scene.
 struct ResumeEdits {
     std::size_t luminaires = 0, polygons = 0;
+    /// Of the luminaires changed, how many were applied exactly by rescaling their light layer
+    /// (light_layers.h: no shot needed); the rest are shot.
+    std::size_t rescaled = 0;
     bool any() const { return luminaires + polygons > 0; }
 };
 /// Restores the solver's state from `file` (read from `path`); the solver must have been built

@@ -67,6 +67,13 @@ struct SolverOptions {
     /// ones, where it does and clusters would only cost accuracy; "on", "off". GPU providers
     /// only.
     std::string clusters = "auto";
+    /// Keep each luminaire's share of the solution apart (light_layers.h): dimming or switching
+    /// off a luminaire afterwards (set_luminaire_multiplier, `--resume` with
+    /// `--luminaire-multiplier`) rescales its share instead of shooting the difference. Costs a
+    /// hierarchy's node storage per luminaire and a little time a shot. "auto": in scenes of
+    /// 1 to 16 luminaires whose layers need at most 256 MB, and no clusters; "on": whenever
+    /// there are luminaires and no clusters; "off".
+    std::string light_layers = "auto";
     /// A cluster whose misplaced power (its share misplaced, parallax and near light, times
     /// its unshot power) would exceed this fraction of the emitted power shoots its children
     /// instead (as shooter_parallax for a patch; looser, as a cluster shot stands for many
@@ -116,6 +123,7 @@ HEMIRAD_API const char* to_string(StopReason r);
 
 class ClusterTree;
 class GlazingTracer;
+class LightLayers;
 class PlaneCuts;
 struct Photometry;
 
@@ -221,6 +229,13 @@ class HEMIRAD_API Solver {
     // (scene_edit.h), or if the solver was built from a const Scene.
     /// Sets the multiplier of the luminaire named `name` (>= 0; 0 = off).
     void set_luminaire_multiplier(const std::string& name, double multiplier);
+    /// Moves and aims the luminaire named `name` (scene_edit.h, set_luminaire_placement): its
+    /// light leaves its old place at once (its light layer is taken out of the solution) and
+    /// all its power is unshot at the new one. Needs light layers (has_light_layers(); else
+    /// InputError: without them its old light could only be taken out from a luminaire that
+    /// is no longer there). A change of the scene's geometry: a solution saved afterwards
+    /// resumes only for the moved scene.
+    void place_luminaire(const std::string& name, const dvec3& position, const dvec3& aim);
     /// Sets the reflectance of surface group `group` (each channel in [0, 1); untextured).
     void set_reflectance(const std::string& group, const dvec3& rho);
     /// Sets the emitted radiance Ke [W sr^-1 unit^-2] of surface group `group` (>= 0).
@@ -230,6 +245,11 @@ class HEMIRAD_API Solver {
     /// power as the edits above do. Throws InputError if the sizes differ or a textured
     /// polygon's reflectance changed. Returns how many luminaires and polygons changed.
     std::pair<std::size_t, std::size_t> apply_photometry(const Photometry& before);
+    /// Does the solver keep each luminaire's share apart (SolverOptions::light_layers)? Then a
+    /// luminaire's multiplier edit from f0 > 0 is exact at once, with no shot.
+    bool has_light_layers() const { return layers_ != nullptr; }
+    /// How many luminaire edits so far were applied by rescaling a light layer.
+    long rescaled_luminaires() const { return rescaled_; }
 
     /// Resets the timer origin (for resumed runs) and restores counters (save/resume).
     struct Counters {
@@ -257,10 +277,20 @@ class HEMIRAD_API Solver {
         std::vector<double> provider;       ///< FormFactorProvider::save_state()
         std::vector<dvec3> luminaires;      ///< per luminaire, unshot power [W]
         std::vector<std::uint8_t> clusters; ///< per cluster-tree node, a view code
+        /// Per luminaire, its share of the solution (light_layers.h), or none (no layers).
+        struct Layer {
+            std::vector<Hierarchy::Node> nodes;
+            std::vector<dvec3> unshot;
+            std::vector<std::uint8_t> dirty;
+            dvec3 absorbed{0.0}, escaped{0.0}; ///< of the luminaire's light [W]
+        };
+        std::vector<Layer> layers;
     };
     State save_state() const;
     /// Restores a state saved by a solver with the same scene and options. Throws InputError
     /// if the sizes do not fit this solver's hierarchy or provider, or a value is not finite.
+    /// A state without light layers drops this solver's (an edit is then shot); one with
+    /// layers, restored into a solver without, drops them.
     void restore_state(const State& state);
 
   private:
@@ -274,7 +304,8 @@ class HEMIRAD_API Solver {
     void attenuate_through_glazing(const dvec3& origin);
     /// Delivers the links of a shot of unshot radiosity dB from a shooter of area A_S (a
     /// luminaire: its power, A_S = 1): row sum, guard, receive, absorbed and escaped power.
-    void deliver(const dvec3& dB, double area_s, ShotRecord& rec);
+    /// Returns the guard's scale of the form factors (1 when the row was not rescaled).
+    double deliver(const dvec3& dB, double area_s, ShotRecord& rec);
     void finish_shot(ShotRecord& rec, std::chrono::steady_clock::time_point start);
     void check_stop();
     /// Shoots from `polygon` (pushed): the greedy shooter, replaced by its children while
@@ -311,6 +342,8 @@ class HEMIRAD_API Solver {
     std::unique_ptr<ClusterTree> clusters_;  ///< null: clusters off (or a CPU provider)
     std::vector<double> cluster_power_;      ///< per cluster node, unshot power summed over RGB
     std::vector<std::uint8_t> cluster_view_; ///< per cluster node, a view code (as view_)
+    std::unique_ptr<LightLayers> layers_;    ///< null: no light layers (light_layers.h)
+    long rescaled_ = 0;                      ///< luminaire edits applied by rescaling
     ShotRecord last_;
     std::vector<ShotRecord> round_;
     Collective* collective_ = nullptr;

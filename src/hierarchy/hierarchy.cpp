@@ -188,6 +188,32 @@ dvec3 Hierarchy::add_unshot(std::uint32_t p, const dvec3& drho, const dvec3& dBe
     return dvec3(root.H) * double(root.area);
 }
 
+void Hierarchy::scale(double s) {
+    const float f = float(s);
+    for (Node& n : nodes_) {
+        n.H *= f;
+        n.dB *= f;
+        n.dI *= f;
+    }
+    for (dvec3& u : unshot_) u *= s;
+    if (s == 0) std::fill(dirty_.begin(), dirty_.end(), std::uint8_t(0));
+}
+
+void Hierarchy::add_scaled(const Hierarchy& other, double s) {
+    HEMIRAD_CHECK_EQ(other.nodes_.size(), nodes_.size());
+    HEMIRAD_CHECK_EQ(other.unshot_.size(), unshot_.size());
+    const float f = float(s);
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
+        nodes_[i].H += f * other.nodes_[i].H;
+        nodes_[i].dB += f * other.nodes_[i].dB;
+        nodes_[i].dI += f * other.nodes_[i].dI;
+    }
+    for (std::size_t p = 0; p < unshot_.size(); ++p) {
+        unshot_[p] += s * other.unshot_[p];
+        dirty_[p] = std::uint8_t(dirty_[p] | other.dirty_[p]);
+    }
+}
+
 dvec3 Hierarchy::total_unshot_power() const {
     dvec3 u(0.0);
     for (const dvec3& p : unshot_) u += p;

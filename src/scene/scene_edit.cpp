@@ -52,23 +52,51 @@ template <class Edit> void edit_group_materials(Scene& scene, std::uint32_t g, E
 
 } // namespace
 
-std::size_t set_luminaire_multiplier(Scene& scene, const std::string& name, double multiplier) {
-    for (std::size_t k = 0; k < scene.luminaires.size(); ++k) {
-        if (scene.luminaires[k].name != name) continue;
-        if (!(multiplier >= 0) || !std::isfinite(multiplier))
-            throw InputError("--luminaire-multiplier " + name + "=" + num(multiplier) +
-                             ": the multiplier must be finite and >= 0 (0 = off)");
-        Luminaire& l = scene.luminaires[k];
-        if (l.multiplier > 0) l.rated_lumens *= multiplier / l.multiplier;
-        l.multiplier = multiplier;
-        return k;
-    }
+namespace {
+
+/// The index of the luminaire named `name`, or an InputError that starts with `what` and lists
+/// the scene's luminaires.
+std::size_t luminaire_index(const Scene& scene, const std::string& name, const std::string& what) {
+    for (std::size_t k = 0; k < scene.luminaires.size(); ++k)
+        if (scene.luminaires[k].name == name) return k;
     std::string known;
     for (const Luminaire& l : scene.luminaires) known += (known.empty() ? "" : ", ") + l.name;
     throw InputError(
-        "--luminaire-multiplier " + name + "=" + num(multiplier) +
-        ": the scene has no luminaire named '" + name + "'" +
+        what + ": the scene has no luminaire named '" + name + "'" +
         (known.empty() ? std::string(" (it has none)") : " (luminaires: " + known + ")"));
+}
+
+} // namespace
+
+std::size_t set_luminaire_multiplier(Scene& scene, const std::string& name, double multiplier) {
+    const std::string what = "--luminaire-multiplier " + name + "=" + num(multiplier);
+    const std::size_t k = luminaire_index(scene, name, what);
+    if (!(multiplier >= 0) || !std::isfinite(multiplier))
+        throw InputError(what + ": the multiplier must be finite and >= 0 (0 = off)");
+    Luminaire& l = scene.luminaires[k];
+    if (l.multiplier > 0) l.rated_lumens *= multiplier / l.multiplier;
+    l.multiplier = multiplier;
+    return k;
+}
+
+std::size_t set_luminaire_placement(Scene& scene, const std::string& name, const dvec3& position,
+                                    const dvec3& aim) {
+    const auto xyz = [](const dvec3& v) { return num(v.x) + "," + num(v.y) + "," + num(v.z); };
+    const std::string what =
+        "luminaire " + name + " at (" + xyz(position) + ") aimed (" + xyz(aim) + ")";
+    const std::size_t k = luminaire_index(scene, name, what);
+    for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(position[c])) throw InputError(what + ": the position must be finite");
+    Luminaire moved = scene.luminaires[k];
+    moved.position = position;
+    moved.aim = aim;
+    try {
+        moved.orient();
+    } catch (const InputError& e) {
+        throw InputError(what + ": " + e.what());
+    }
+    scene.luminaires[k] = moved;
+    return k;
 }
 
 void set_group_reflectance(Scene& scene, const std::string& group, const dvec3& rho) {

@@ -187,6 +187,14 @@ std::string solution_bytes(const Solver& solver) {
     for (std::size_t p = 0; p < ph.rho.size(); ++p) w.dvec(ph.rho[p]), w.dvec(ph.exitance[p]);
     w.u32(std::uint32_t(ph.luminaires.size()));
     for (const dvec3& power : ph.luminaires) w.dvec(power);
+    // Version 5: the luminaires' light layers (light_layers.h), or none.
+    w.u32(std::uint32_t(st.layers.size()));
+    for (const Solver::State::Layer& l : st.layers) {
+        for (const Hierarchy::Node& n : l.nodes) w.vec3(n.H), w.vec3(n.dB), w.vec3(n.dI);
+        for (std::size_t p = 0; p < l.unshot.size(); ++p) w.dvec(l.unshot[p]), w.u8(l.dirty[p]);
+        w.dvec(l.absorbed);
+        w.dvec(l.escaped);
+    }
     w.u64(fnv1a(w.bytes().data(), w.bytes().size()));
     return std::move(w.bytes());
 }
@@ -284,6 +292,27 @@ SolutionFile parse_solution(const std::string& bytes, const std::string& path) {
         for (dvec3& power : f.photometry.luminaires) power = r.dvec("luminaire power");
         f.has_photometry = true;
     }
+    if (version >= 5) { // version 5: the luminaires' light layers
+        const std::uint64_t n_layers = r.u32("light layer count");
+        r.count(n_layers, 36 * nodes + 25 * std::uint64_t(polygons) + 48, "light layers");
+        f.state.layers.resize(n_layers);
+        for (Solver::State::Layer& l : f.state.layers) {
+            l.nodes.resize(nodes);
+            for (Hierarchy::Node& n : l.nodes) {
+                n.H = r.vec3("light layer H");
+                n.dB = r.vec3("light layer dB");
+                n.dI = r.vec3("light layer dI");
+            }
+            l.unshot.resize(polygons);
+            l.dirty.resize(polygons);
+            for (std::uint32_t p = 0; p < polygons; ++p) {
+                l.unshot[p] = r.dvec("light layer unshot power");
+                l.dirty[p] = r.u8("light layer dirty flag");
+            }
+            l.absorbed = r.dvec("light layer absorbed power");
+            l.escaped = r.dvec("light layer escaped power");
+        }
+    }
     if (version < 3) { // versions 1 and 2 coded parallax 16 steps to an octave from 2 up to 255
         for (std::uint8_t& e : f.state.enclosed)
             if (e >= 2) e = std::uint8_t(2 + (e - 2) / 2 > 127 ? 127 : 2 + (e - 2) / 2);
@@ -343,8 +372,11 @@ ResumeEdits resume_solution(Solver& solver, const SolutionFile& file, const std:
         solver.restore_state(file.state);
         // The scene's photometry now against the saved one: the differences become unshot
         // power (incremental re-solving; nothing when they are equal).
-        if (file.has_photometry)
+        if (file.has_photometry) {
+            const long rescaled = solver.rescaled_luminaires();
             std::tie(edits.luminaires, edits.polygons) = solver.apply_photometry(file.photometry);
+            edits.rescaled = std::size_t(solver.rescaled_luminaires() - rescaled);
+        }
     } catch (const InputError& e) {
         throw InputError(path, 0, e.what());
     }

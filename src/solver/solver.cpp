@@ -11,6 +11,7 @@
 #include "hemirad/memory_guard.h"
 #include "hemirad/solver_options.h"
 #include "solver/cluster_tree.h"
+#include "solver/light_layers.h"
 #include "solver/plane_cuts.h"
 #include "solver/sky_light.h"
 #include "solver/solver_detail.h"
@@ -107,6 +108,9 @@ void Solver::init() {
         cluster_power_.assign(clusters_->nodes().size(), 0.0);
         cluster_view_.assign(clusters_->nodes().size(), kViewUnknown);
     }
+    // Each luminaire's share of the solution apart, for edits without shots (light_layers.h).
+    if (LightLayers::wanted(options_.light_layers, hierarchy_, clusters_ != nullptr))
+        layers_ = std::make_unique<LightLayers>(hierarchy_);
     // Window panes (glazing.h) are no polygons: hemicubes look through them, and the links they
     // find are attenuated by the panes between (attenuate_through_glazing).
     if (!scene_->glazing.empty()) glazing_ = std::make_unique<GlazingTracer>(*scene_);
@@ -259,14 +263,16 @@ bool Solver::step() {
     }
     t0 = Clock::now();
     if (hierarchy_.needs_push_pull(polygon)) hierarchy_.push_pull(polygon);
+    if (layers_) layers_->push_pull(polygon);
     rec.t_push_pull = since(t0);
     dvec3 dB;
     double area_s = 0;
     const PatchAddress sa = shoot_patch(polygon, rec, dB, area_s);
 
     // 3. Update: dI_j += F(j->S) dB_S (irradiance); row sum sum_j F(j->S) A_j / A_S.
-    deliver(dB, area_s, rec);
+    const double scale = deliver(dB, area_s, rec);
     auto t1 = Clock::now();
+    if (layers_) layers_->deliver_patch(sa, area_s, links_, scale);
     hierarchy_.clear_unshot(sa);
     rec.t_update += since(t1);
     last_polygon_ = polygon;
@@ -371,7 +377,8 @@ void Solver::shoot_luminaire(std::size_t k, ShotRecord& rec) {
     rec.t_form_factors = since(t0);
     rec.ff_phases = provider_->last_timings();
     rec.links = links_.size();
-    deliver(power, 1.0, rec);
+    const double scale = deliver(power, 1.0, rec);
+    if (layers_) layers_->deliver_luminaire(k, power, links_, scale);
     luminaire_unshot_[k] = dvec3(0.0);
 }
 
@@ -602,7 +609,7 @@ void Solver::attenuate_through_glazing(const dvec3& origin) {
     }
 }
 
-void Solver::deliver(const dvec3& dB, double area_s, ShotRecord& rec) {
+double Solver::deliver(const dvec3& dB, double area_s, ShotRecord& rec) {
     const auto t0 = Clock::now();
     double row = 0;
     for (const Link& l : links_) row += double(l.ff) * double(hierarchy_.node(l.receiver).area);
@@ -625,6 +632,7 @@ void Solver::deliver(const dvec3& dB, double area_s, ShotRecord& rec) {
     }
     escaped_ += dB * area_s - received;
     rec.t_update = since(t0);
+    return scale;
 }
 
 void Solver::finish_shot(ShotRecord& rec, Clock::time_point t_start) {
@@ -744,6 +752,7 @@ Solver::State Solver::save_state() const {
     st.provider = provider_->save_state();
     st.luminaires = luminaire_unshot_;
     st.clusters = cluster_view_;
+    if (layers_) st.layers = layers_->save_state();
     return st;
 }
 
@@ -784,7 +793,28 @@ void Solver::restore_state(const State& st) {
         c.last_polygon < -1 || c.last_polygon >= std::int64_t(scene_->polygons.size()) ||
         !(c.seconds >= 0))
         throw InputError("saved solver state: invalid counters");
+    if (layers_ && !st.layers.empty()) {
+        expect("light layers", st.layers.size(), layers_->size());
+        for (std::size_t k = 0; k < st.layers.size(); ++k) {
+            const Solver::State::Layer& l = st.layers[k];
+            expect("light layer nodes", l.nodes.size(), nodes.size());
+            expect("light layer polygons", l.unshot.size(), unshot.size());
+            expect("light layer polygons (dirty flags)", l.dirty.size(), dirty.size());
+            bool ok = finite(l.absorbed) && finite(l.escaped);
+            for (const Hierarchy::Node& n : l.nodes)
+                ok = ok && finite(n.H) && finite(n.dB) && finite(n.dI);
+            for (std::size_t p = 0; p < l.unshot.size(); ++p)
+                ok = ok && finite(l.unshot[p]) && l.dirty[p] <= 1;
+            if (!ok)
+                throw InputError("saved solver state: light layer " + std::to_string(k) +
+                                 " holds an invalid value");
+        }
+    }
     provider_->restore_state(st.provider);
+    if (st.layers.empty())
+        layers_.reset(); // the saved solution kept no layers: an edit is shot
+    else if (layers_)
+        layers_->restore_state(st.layers);
     hierarchy_.restore_state(st.nodes, st.unshot, st.dirty);
     view_ = st.enclosed;
     luminaire_unshot_ = st.luminaires;

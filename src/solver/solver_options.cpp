@@ -152,6 +152,17 @@ const SolverOption kTable[] = {
      .field = HEMIRAD_FIELD(cluster_parallax),
      .check = Check::Solver,
      .range = {.lo = 0, .finite = true, .note = " (0 = never refine clusters)"}},
+    {.flag = "--light-layers",
+     .metavar = "auto|on|off",
+     .unit = "",
+     .help = "keep each luminaire's share of the solution apart, so that dimming or switching "
+             "off a luminaire later (--luminaire-multiplier, with --resume) needs no shot; "
+             "auto: for 1 to 16 luminaires whose layers fit in 256 MB, without clusters",
+     .section = kSolver,
+     .field = HEMIRAD_FIELD(light_layers),
+     .saved = false, // a saved solution's layers are in its state (solution_file.h)
+     .check = Check::Solver,
+     .choices = "auto|on|off"},
     {.flag = "--memory-limit",
      .metavar = "SIZE",
      .unit = "bytes",

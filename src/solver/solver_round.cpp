@@ -8,6 +8,7 @@
 
 #include "hemirad/error.h"
 #include "hemirad/solver.h"
+#include "solver/light_layers.h"
 #include "solver/solver_detail.h"
 
 namespace hemirad {
@@ -74,6 +75,8 @@ struct Candidate {
 
 bool Solver::step_round() {
     const auto t_start = Clock::now();
+    // Parallel rounds keep no light layers (light_layers.h): an edit after them is shot.
+    layers_.reset();
     const int me = collective_->rank();
     ShotRecord mine;
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Incremental re-solving on the command line (issue 21): --luminaire-multiplier and
 # --reflectance, with and without --resume; --resume of a SCENE.json whose photometry differs
-# (a luminaire's multiplier) is accepted and re-converges, reported as incremental; one whose
+# (a luminaire's multiplier) is accepted and re-converges (rescaled by its light layer, or
+# shot with --light-layers off), reported as incremental; one whose
 # geometry differs (a luminaire moved) or another scene is refused; bad edits name the value.
 set -euo pipefail
 HEMIRAD="$1"
@@ -43,12 +44,26 @@ python3 - <<'PY'
 import csv, json
 r = json.load(open("inc.json"))["resume"]
 assert r["incremental"] and r["luminaires_changed"] == 1 and r["polygons_changed"] == 0, r
-assert r["shots_this_run"] >= 1, r
+# The scene's luminaires have light layers (--light-layers auto): the dimming is a rescaling,
+# and re-converging takes at most a few shots, not a solve's.
+assert r["luminaires_rescaled"] == 1, r
+assert r["shots_this_run"] * 20 <= r["shots_before"], r
 def grid(f): return [float(row["E_Y"]) for row in csv.DictReader(open(f))]
 base, inc, fresh = grid("base.csv"), grid("inc.csv"), grid("fresh.csv")
 worst = max(abs(a / b - 1) for a, b in zip(inc, fresh))
 assert worst < 0.01, worst
 assert min(a / b for a, b in zip(base, inc)) > 1.05, "D1 halved must darken the floor"
+PY
+# Without light layers the dimming is shot as negative light; the grid is the same.
+"$HEMIRAD" solve dimmed.json --resume base.sol --light-layers off "${opts[@]}" shot.csv \
+    --report shot.json --quiet
+python3 - <<'PY'
+import csv, json
+r = json.load(open("shot.json"))["resume"]
+assert r["luminaires_rescaled"] == 0 and r["shots_this_run"] >= 1, r
+def grid(f): return [float(row["E_Y"]) for row in csv.DictReader(open(f))]
+worst = max(abs(a / b - 1) for a, b in zip(grid("shot.csv"), grid("fresh.csv")))
+assert worst < 0.01, worst
 PY
 # Edits on the command line with --resume (P1 off, the floor's reflectance) re-converge too.
 "$HEMIRAD" solve room.json --resume base.sol --luminaire-multiplier P1=0 \

@@ -128,6 +128,8 @@ s.set_reflectance("floor", 0.5)
 raises(ValueError, ["--reflectance floor=1.5"], lambda: s.set_reflectance("floor", 1.5))
 raises(ValueError, ["no surface group 'roof'"], lambda: s.set_emission("roof", 1))
 raises(ValueError, ["no luminaire named 'L9'"], lambda: s.set_luminaire_multiplier("L9", 0))
+# The Cornell box has no luminaires, so no light layers: moving one is refused, naming them.
+raises(ValueError, ["light layers"], lambda: s.place_luminaire("L9", (0, 1, 0), (0, -1, 0)))
 print("python: ok,", s.shots, "shots, max relative difference to the CLI", err,
       ";", len(keys), "options by keyword")
 PY

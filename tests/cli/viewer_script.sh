@@ -4,7 +4,8 @@
 # at the picked point) is within 3 % of `hemirad solve --luminaire-multiplier D2=0 --probes` at
 # the same point and normal; the screenshot has the window's size. Then bad scripts: an unknown
 # command, a bad argument and an unknown luminaire name are errors naming the script file and
-# line (non-zero exit, no crash); a reflectance edit and a pick in W/unit^2 (--units W); the
+# line (non-zero exit, no crash); a luminaire moved and aimed; a reflectance edit and a pick in
+# W/unit^2 (--units W); the
 # Dear ImGui panels draw (when built with them) and --no-panels hides them.
 #
 # CTest runs: bash viewer_script.sh <path to hemirad> <source dir>
@@ -61,6 +62,40 @@ data = open("office.png", "rb").read()
 assert data[:8] == b"\x89PNG\r\n\x1a\n", "office.png: not a PNG"
 w, h = struct.unpack(">II", data[16:24])
 assert (w, h) == (960, 720), f"office.png is {w}x{h}, expected 960x720"
+PY
+
+# A luminaire moved and re-aimed in the viewer (light layers: its light leaves the old place,
+# and is shot from the new one): the pick agrees with a fresh solve of the moved SCENE.json
+# within 3 %, as above.
+cat > moved.txt <<'SCRIPT'
+shots 300
+luminaire D2 position 3.7 2.79 2.1
+luminaire D2 aim 0.3 -1 0
+shots 400
+pick 480 620
+SCRIPT
+xvfb-run -a "$view" "$office" --width 960 --height 720 --script moved.txt --quiet > moved_out.txt
+python3 - "$src/assets/lighting" <<'PY'
+import json, sys
+src = sys.argv[1]
+j = json.load(open(src + "/office.json"))
+j["include"] = [src + "/" + f for f in j["include"]]
+for l in j["luminaires"]:
+    if "ies" in l: l["ies"] = src + "/" + l["ies"]
+    if l["name"] == "D2": l["position"], l["aim"] = [3.7, 2.79, 2.1], [0.3, -1, 0]
+json.dump(j, open("moved.json", "w"))
+PY
+read -r _ _ _ x y z nx ny nz group lux unit <<<"$(grep '^pick 480 620: ' moved_out.txt)"
+printf 'x,y,z,nx,ny,nz\n%s,%s,%s,%s,%s,%s\n' "$x" "$y" "$z" "$nx" "$ny" "$nz" > moved_probe.csv
+"$hemirad" solve moved.json --probes moved_probe.csv --probe-out moved_ref.csv --quiet
+python3 - "$lux" <<'PY'
+import csv, sys
+lux = float(sys.argv[1])
+row = next(csv.DictReader(open("moved_ref.csv")))
+ref = 683 * (0.2126 * float(row["E_r"]) + 0.7152 * float(row["E_g"]) + 0.0722 * float(row["E_b"]))
+err = lux / ref - 1
+print(f"moved D2: pick {lux:.1f} lx vs hemirad solve of the moved scene {ref:.1f} lx: {100 * err:+.2f} %")
+assert abs(err) < 0.03, f"pick differs by {100 * err:.2f} % (limit 3 %)"
 PY
 
 # Reflectance edits, grey and RGB (a blank line, an indented line); a pick in W/unit^2.

@@ -24,9 +24,10 @@ struct Run {
     GridResult floor;
 };
 
-SolverOptions options() {
+SolverOptions options(const char* layers = "auto") {
     SolverOptions so; // the defaults, as `hemirad solve ... --tolerance 0.001`
     so.tolerance = 1e-3;
+    so.light_layers = layers;
     so.provider.gpu.use_current_context = true;
     return so;
 }
@@ -48,12 +49,11 @@ GridResult floor_grid(Solver& s) {
     return evaluate_grid(h, parse_grid_spec("floor:12x8"), &gather);
 }
 
-} // namespace
-
-void run_incremental(const std::string& office_json) {
-    auto context = gl::Context::create();
+/// The edit with light layers as `layers` says ("auto": each luminaire's share apart, the
+/// edit a rescaling; "off": the edit shot as negative light).
+void measure(const std::string& office_json, const char* layers) {
     Scene project = load_scene(office_json);
-    Solver solver(project, options());
+    Solver solver(project, options(layers));
     Run base = converge(solver);
     base.floor = floor_grid(solver);
     // The edit: D2 off, S1 at half its intensity; the solution re-converges from the last.
@@ -93,6 +93,8 @@ void run_incremental(const std::string& office_json) {
     j["name"] = "incremental";
     j["description"] = "office.json converged, D2 off and S1 halved: re-converge vs fresh solve";
     j["scene"] = office_json;
+    j["light_layers"] = layers;
+    j["has_light_layers"] = solver.has_light_layers();
     j["tolerance"] = 1e-3;
     j["base_shots"] = base.shots;
     j["base_seconds"] = base.seconds;
@@ -109,14 +111,22 @@ void run_incremental(const std::string& office_json) {
     j["max_grid_difference"] = worst;
     j["max_grid_difference_of_max"] = worst_of_max;
     std::printf("JSON %s\n", j.dump(0).c_str());
-    std::printf("ROW incremental  base %ld shots %.1f s  edit: bound %.3g, %ld shots (%.1f %% of "
-                "base) %.1f s  fresh %ld shots %.1f s  floor 12x8 max diff %.2f %% (Eavg %.1f -> "
-                "%.1f lx)\n",
-                base.shots, base.seconds, bound_after_edit, incremental.shots,
+    std::printf("ROW incremental  layers %-4s base %ld shots %.1f s  edit: bound %.3g, %ld shots "
+                "(%.1f %% of base) %.1f s  fresh %ld shots %.1f s  floor 12x8 max diff %.2f %% "
+                "(Eavg %.1f -> %.1f lx)\n",
+                layers, base.shots, base.seconds, bound_after_edit, incremental.shots,
                 100.0 * double(incremental.shots) / double(base.shots), incremental.seconds,
                 fresh.shots, fresh.seconds, 100 * worst, kLux * base.floor.Y_avg,
                 kLux * incremental.floor.Y_avg);
     std::fflush(stdout);
+}
+
+} // namespace
+
+void run_incremental(const std::string& office_json) {
+    auto context = gl::Context::create();
+    measure(office_json, "auto");
+    measure(office_json, "off");
 }
 
 } // namespace hemirad::bench

@@ -179,9 +179,10 @@ int cmd_solve(int argc, char** argv) {
         if (!quiet && resume_edits.any())
             std::fprintf(stderr,
                          "hemirad: resumed incrementally from %s after %ld shots: %zu "
-                         "luminaires and %zu polygons changed, error bound now %.3e\n",
+                         "luminaires (%zu rescaled by their light layers) and %zu polygons "
+                         "changed, error bound now %.3e\n",
                          exports.resume.c_str(), solver.shots(), resume_edits.luminaires,
-                         resume_edits.polygons, solver.error_bound());
+                         resume_edits.rescaled, resume_edits.polygons, solver.error_bound());
         else if (!quiet)
             std::fprintf(stderr, "hemirad: resumed from %s after %ld shots\n",
                          exports.resume.c_str(), solver.shots());
@@ -304,6 +305,7 @@ int cmd_solve(int argc, char** argv) {
             resume["seconds_this_run"] = solver.seconds() - seconds_before;
             resume["incremental"] = resume_edits.any();
             resume["luminaires_changed"] = resume_edits.luminaires;
+            resume["luminaires_rescaled"] = resume_edits.rescaled;
             resume["polygons_changed"] = resume_edits.polygons;
         }
         write_report(report, solver, scene, grids, exports.lux, exports.daylight_lux,

@@ -21,7 +21,8 @@ void validate_output_options(const OutputOptions& o);
 void write_outputs(const OutputOptions& o, Solver& solver, bool quiet);
 
 /// The JSON report; `resume`, unless null, goes in as its "resume" key (hemirad solve --resume:
-/// file, shots_before, shots_this_run, incremental, luminaires_changed, polygons_changed).
+/// file, shots_before, shots_this_run, incremental, luminaires_changed, luminaires_rescaled,
+/// polygons_changed).
 void write_report(const std::string& path, Solver& solver, const Scene& scene,
                   const std::vector<GridResult>& grids = {}, bool lux = false,
                   double daylight_lux = 0, const Json* resume = nullptr);

@@ -429,7 +429,20 @@ void run_command(const ScriptCommand& c, SolveThread& solve, bool quiet) {
     }
     case ScriptCommand::Kind::Luminaire: {
         auto l = solve.lock();
-        solve.solver().set_luminaire_multiplier(c.name, c.multiplier);
+        Solver& solver = solve.solver();
+        if (c.property == "multiplier") {
+            solver.set_luminaire_multiplier(c.name, c.multiplier);
+        } else {
+            const std::vector<Luminaire>& lums = solver.scene().luminaires;
+            const auto it = std::find_if(lums.begin(), lums.end(),
+                                         [&](const Luminaire& x) { return x.name == c.name; });
+            const bool found = it != lums.end();
+            const dvec3 position = c.property == "position" ? c.xyz
+                                   : found                  ? it->position
+                                                            : dvec3(0.0);
+            const dvec3 aim = c.property == "aim" ? c.xyz : found ? it->aim : dvec3(0, -1, 0);
+            solver.place_luminaire(c.name, position, aim); // an unknown name: InputError
+        }
         solve.edited();
         break;
     }

@@ -69,6 +69,15 @@ void Panels::sync(const Scene& scene) {
         l.on = m > 0;
         if (m > 0) l.dimmer = float(std::min(m / l.base, 1.0));
     }
+    for (std::size_t k = 0; k < luminaires_.size() && k < scene.luminaires.size(); ++k) {
+        Luminaire& l = luminaires_[k];
+        const hemirad::Luminaire& s = scene.luminaires[k];
+        if (s.position == l.placed && s.aim == l.aimed) continue;
+        l.placed = s.position;
+        l.aimed = s.aim;
+        for (int c = 0; c < 3; ++c)
+            l.position[c] = float(s.position[c]), l.aim[c] = float(s.aim[c]);
+    }
     for (Group& g : groups_) {
         if (scene.polygons.empty()) break;
         const dvec3 rho = scene.material_of(scene.polygons[g.first_polygon]).rho;
@@ -149,6 +158,25 @@ bool Panels::draw(Solver& solver, const PanelView& view, const PanelStats& stats
                 const double m = l.on ? l.base * double(l.dimmer) : 0.0;
                 apply([&] { solver.set_luminaire_multiplier(l.name, m); });
                 l.applied = std::nan(""); // the next frame shows what the scene holds
+            }
+            // Position and aim (scene units), applied when the field is left after an edit:
+            // the luminaire's light leaves its old place and is shot from the new one.
+            if (solver.has_light_layers() && ImGui::TreeNode("placement")) {
+                ImGui::SetNextItemWidth(200);
+                ImGui::DragFloat3("position", l.position, 0.05f, 0, 0, "%.2f");
+                bool moved = ImGui::IsItemDeactivatedAfterEdit();
+                ImGui::SetNextItemWidth(200);
+                ImGui::DragFloat3("aim", l.aim, 0.02f, -1, 1, "%.2f");
+                moved |= ImGui::IsItemDeactivatedAfterEdit();
+                if (moved) {
+                    apply([&] {
+                        solver.place_luminaire(l.name,
+                                               dvec3(l.position[0], l.position[1], l.position[2]),
+                                               dvec3(l.aim[0], l.aim[1], l.aim[2]));
+                    });
+                    l.placed = dvec3(std::nan("")); // the next frame shows what the scene holds
+                }
+                ImGui::TreePop();
             }
             ImGui::PopID();
         }

@@ -1,4 +1,5 @@
-// hemirad-view's Dear ImGui panels (issue 21): luminaires (on/off, dimmer), surface groups
+// hemirad-view's Dear ImGui panels (issue 21): luminaires (on/off, dimmer, position and aim:
+// Solver::place_luminaire, with light layers), surface groups
 // (reflectance, live irradiance statistics), the solver's progress and error bound, and the
 // view (exposure, false colour, ambient term). Every edit goes to the solver's incremental
 // re-solving (Solver::set_luminaire_multiplier(), set_reflectance()) and the solve continues.
@@ -55,6 +56,8 @@ class Panels {
         bool on = true;
         float dimmer = 1;   ///< fraction of `base`, [0, 1]
         double applied = 1; ///< the multiplier the panel last saw or set
+        float position[3] = {0, 0, 0}, aim[3] = {0, -1, 0}; ///< as edited
+        dvec3 placed{0.0}, aimed{0.0}; ///< the placement the panel last saw or set
     };
     struct Group {
         std::string name;

@@ -15,6 +15,9 @@ namespace hemirad::view {
 const char* const kScriptHelp =
     "  shots N                       solve N more shots (fewer once converged)\n"
     "  luminaire NAME multiplier F   a luminaire's multiplier (0 = off), re-solved incrementally\n"
+    "  luminaire NAME position X Y Z move a luminaire (scene units); its light is taken out and\n"
+    "                                shot again from there (needs light layers)\n"
+    "  luminaire NAME aim X Y Z      aim it (its photometric nadir), likewise\n"
     "  reflectance GROUP R [G B]     a surface group's reflectance (each in [0, 1))\n"
     "  pick X Y                      window pixel (origin top left): prints to stdout\n"
     "                                'pick X Y: x y z nx ny nz GROUP E UNIT', E by final gather\n"
@@ -81,13 +84,26 @@ std::vector<ScriptCommand> read_script(const std::string& path) {
             c.shots = long(*n);
         } else if (verb == "luminaire") {
             c.kind = ScriptCommand::Kind::Luminaire;
-            arguments(3, "luminaire NAME multiplier F");
-            if (w[2] != "multiplier")
-                fail("unknown luminaire property '" + quoted_excerpt(w[2]) +
-                     "' (expected: luminaire NAME multiplier F)");
+            constexpr const char* kUsage =
+                "luminaire NAME multiplier F, luminaire NAME position X Y Z or luminaire NAME aim "
+                "X Y Z";
+            if (w.size() < 3) fail(std::string("expected ") + kUsage);
             c.name = w[1];
-            c.multiplier = number_of(w[3], "multiplier");
-            if (c.multiplier < 0) fail("the multiplier must be >= 0 (0 = off)");
+            c.property = w[2];
+            if (c.property == "multiplier") {
+                arguments(3, "luminaire NAME multiplier F");
+                c.multiplier = number_of(w[3], "multiplier");
+                if (c.multiplier < 0) fail("the multiplier must be >= 0 (0 = off)");
+            } else if (c.property == "position" || c.property == "aim") {
+                arguments(5, c.property == "aim" ? "luminaire NAME aim X Y Z"
+                                                 : "luminaire NAME position X Y Z");
+                for (int k = 0; k < 3; ++k) c.xyz[k] = number_of(w[3 + k], c.property.c_str());
+                if (c.property == "aim" && c.xyz == dvec3(0.0))
+                    fail("the aim must be a non-zero direction");
+            } else {
+                fail("unknown luminaire property '" + quoted_excerpt(w[2]) +
+                     "' (expected: " + kUsage + ")");
+            }
         } else if (verb == "reflectance") {
             c.kind = ScriptCommand::Kind::Reflectance;
             if (w.size() != 3 && w.size() != 5) fail("expected reflectance GROUP R or R G B");

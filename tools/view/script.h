@@ -3,6 +3,8 @@
 //
 //   shots N                    solve N more shots (fewer if the solver converges)
 //   luminaire NAME multiplier F  set a luminaire's multiplier (0 = off; Solver::set_luminaire_...)
+//   luminaire NAME position X Y Z  move it (Solver::place_luminaire: needs light layers)
+//   luminaire NAME aim X Y Z     aim it (its photometric nadir)
 //   reflectance GROUP R        set a surface group's reflectance, grey ...
 //   reflectance GROUP R G B    ... or per channel (each in [0, 1))
 //   pick X Y                   window pixel (origin top left): prints one line to stdout,
@@ -27,7 +29,9 @@ struct ScriptCommand {
     int line = 0;          ///< 1-based line in the script file
     long shots = 0;        ///< Shots: N >= 0
     std::string name;      ///< Luminaire: its name; Reflectance: the group; Screenshot: the file
-    double multiplier = 1; ///< Luminaire: >= 0, finite
+    std::string property;  ///< Luminaire: "multiplier", "position" or "aim"
+    double multiplier = 1; ///< Luminaire multiplier: >= 0, finite
+    dvec3 xyz{0.0};        ///< Luminaire position or aim (aim non-zero), finite
     dvec3 rho{0.0};        ///< Reflectance: each channel in [0, 1)
     int x = 0, y = 0;      ///< Pick: window pixel, origin top left
 };
