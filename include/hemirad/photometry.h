@@ -221,7 +221,12 @@ struct HEMIRAD_API Luminaire {
     double power() const { return lumens() / kLumensPerWatt; }
     /// Irradiance per RGB channel [W unit^-2] at point x with unit normal n, unoccluded:
     /// I(d) cos(theta) / (683 r^2); 0 behind the surface.
-    double irradiance(const glm::dvec3& x, const glm::dvec3& n) const;
+    double irradiance(const glm::dvec3& x, const glm::dvec3& n) const {
+        return irradiance_from(position, x, n);
+    }
+    /// The same with the light leaving from point y instead of `position` (a point of its
+    /// luminous opening, which stands for the whole luminaire: callers divide by their count).
+    double irradiance_from(const glm::dvec3& y, const glm::dvec3& x, const glm::dvec3& n) const;
 };
 
 } // namespace hemirad

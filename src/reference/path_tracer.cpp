@@ -258,13 +258,7 @@ class PathTracer {
             if (const double size = l.opening.size();
                 size > 0 && glm::length(x - l.position) < 5 * size)
                 y += opening_point(l, rng);
-            const dvec3 d = x - y;
-            const double r2 = glm::dot(d, d);
-            if (!(r2 > 0)) continue;
-            const dvec3 w = d / std::sqrt(r2);
-            const double cos_x = -glm::dot(n, w);
-            if (!(cos_x > 0)) continue;
-            const double el = l.intensity(w) * cos_x / (kLumensPerWatt * r2);
+            const double el = l.irradiance_from(y, x, n);
             if (el > 0 && !bvh_.occluded(x, y, ignore, kNoPolygon)) e += el * panes(x, y - x, 1.0);
         }
         return dvec3(e + sun(x, n, ignore));

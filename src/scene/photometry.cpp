@@ -210,8 +210,9 @@ double Luminaire::intensity(const glm::dvec3& d) const {
     return multiplier * distribution.intensity(gamma, c);
 }
 
-double Luminaire::irradiance(const glm::dvec3& x, const glm::dvec3& n) const {
-    const glm::dvec3 d = x - position;
+double Luminaire::irradiance_from(const glm::dvec3& y, const glm::dvec3& x,
+                                  const glm::dvec3& n) const {
+    const glm::dvec3 d = x - y;
     const double r2 = glm::dot(d, d);
     if (!(r2 > 0)) return 0;
     const glm::dvec3 w = d / std::sqrt(r2);

@@ -149,13 +149,8 @@ double FinalGather::luminous_opening(const Luminaire& l, const dvec3& x, const d
     double e = 0;
     for (const dvec3& offset : points) {
         const dvec3 y = l.position + offset;
-        const dvec3 d = x - y;
-        const double r2 = glm::dot(d, d);
-        if (!(r2 > 0)) continue;
-        const dvec3 w = d / std::sqrt(r2);
-        const double cos_theta = -glm::dot(n, w);
-        if (!(cos_theta > 0) || bvh_->occluded(x, y, self, kNoPolygon)) continue;
-        e += l.intensity(w) * cos_theta / (kLumensPerWatt * r2) * glazing_->between(x, y);
+        const double el = l.irradiance_from(y, x, n);
+        if (el > 0 && !bvh_->occluded(x, y, self, kNoPolygon)) e += el * glazing_->between(x, y);
     }
     return e / double(points.size());
 }
