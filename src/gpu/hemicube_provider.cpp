@@ -358,7 +358,8 @@ class HemicubeProvider final : public FormFactorProvider {
             vis[k].emplace(*scene_, layout, gpu::hemicube_frame(sides[k]), buffers[k]->data(),
                            s.centre, sphere_ids_[k].data());
             vis_[k] = &*vis[k];
-            if (mode_ == Mode::Hybrid) mark_partial(*vis[k], buffers[k]->data());
+            if (mode_ == Mode::Hybrid)
+                mark_partial(*vis[k], buffers[k]->data(), gpu::face_threads(layout));
         }
         sphere_centre_ = s.centre;
         sphere_axis_ = s.axis;
@@ -496,7 +497,7 @@ class HemicubeProvider final : public FormFactorProvider {
                                           shooter.geometry.centre, ids_.data());
         vis_[0] = vis_[1] = &vis;
         sphere_axis_ = dvec3(0.0);
-        if (mode_ == Mode::Hybrid) mark_partial(vis, pixels_.data());
+        if (mode_ == Mode::Hybrid) mark_partial(vis, pixels_.data(), gpu::face_threads(layout));
         link_touched(shooter, shooter.geometry.area, links);
         if (mode_ != Mode::Hemicube) link_missed_polygons(shooter, vis, links);
         vis_[0] = vis_[1] = nullptr;
@@ -505,9 +506,9 @@ class HemicubeProvider final : public FormFactorProvider {
     // Nodes that a silhouette crosses (gpu::HemicubeVisibility::occlusion_edges): the
     // pixels where their polygon goes on behind something nearer border theirs.
     // The faces are searched on threads of their own, the marks set after.
-    void mark_partial(const gpu::HemicubeVisibility& vis, const float* rgba) {
+    void mark_partial(const gpu::HemicubeVisibility& vis, const float* rgba, int threads) {
         for (auto& m : edge_pixels_) m.clear();
-        parallel_for(5, 0, [&](std::size_t f) {
+        parallel_for(5, threads, [&](std::size_t f) {
             vis.occlusion_edges(int(f), [&](std::size_t i) { edge_pixels_[f].push_back(i); });
         });
         for (const auto& m : edge_pixels_)

@@ -65,7 +65,7 @@ std::size_t fill_cracks(const Scene& scene, const HemicubeLayout& L, const Hemic
     // The faces are apart in the image and a pixel takes only its own face's values: each
     // face on its own thread gives what one thread would.
     std::array<std::size_t, 5> filled_in{};
-    parallel_for(5, 0, [&](std::size_t face_index) {
+    parallel_for(5, face_threads(L), [&](std::size_t face_index) {
         const int f = int(face_index);
         std::size_t& filled = filled_in[face_index];
         const HemicubeLayout::Face& face = L.faces[f];
