@@ -133,6 +133,12 @@ class HEMIRAD_API FinalGather {
     dvec3 direct_sample(const dvec3& y, const dvec3& n, std::uint32_t self, Rng& rng) const;
     /// The luminaires' and the sun's direct irradiance at x (one shadow ray each), RGB.
     dvec3 luminaires(const dvec3& x, const dvec3& n, std::uint32_t self) const;
+    /// Where a shadow ray from surface point x (normal n) starts: x lifted off its surface
+    /// by offset_ along n. A point on a surface is on it only to rounding (or to the digits
+    /// of a probe file); from just behind it, a ray towards a light near the surface's plane
+    /// (a bar passing through it, grazing) would be blocked by the surface's twin or a
+    /// coplanar neighbour. The indirect rays start there too.
+    dvec3 lifted(const dvec3& x, const dvec3& n) const { return x + offset_ * n; }
 
     const Hierarchy* h_;
     GatherOptions options_;

@@ -91,7 +91,7 @@ dvec3 FinalGather::direct(const dvec3& x, const dvec3& n, std::uint32_t self,
                 const double pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
                 y = area_point(g.corners.data(), g.count, pick, u1, u2);
             }
-            return bvh_->occluded(x, y, self, e) ? 0.0 : glazing_->between(x, y);
+            return bvh_->occluded(lifted(x, n), y, self, e) ? 0.0 : glazing_->between(x, y);
         };
         std::uint32_t seen = 1; // without the coarse test: "some visible", go fine
         bool clear = false;     // every coarse cell seen whole (no pane between)
@@ -133,7 +133,7 @@ dvec3 FinalGather::luminaires(const dvec3& x, const dvec3& n, std::uint32_t self
             continue;
         }
         const double el = l.irradiance(x, n);
-        if (el > 0 && !bvh_->occluded(x, l.position, self, kNoPolygon))
+        if (el > 0 && !bvh_->occluded(lifted(x, n), l.position, self, kNoPolygon))
             e += el * glazing_->between(x, l.position);
     }
     return dvec3(e) + sun_irradiance(h_->scene(), *bvh_, x, n, self, offset_, glazing_.get());
@@ -150,7 +150,8 @@ double FinalGather::luminous_opening(const Luminaire& l, const dvec3& x, const d
     for (const dvec3& offset : points) {
         const dvec3 y = l.position + offset;
         const double el = l.irradiance_from(y, x, n);
-        if (el > 0 && !bvh_->occluded(x, y, self, kNoPolygon)) e += el * glazing_->between(x, y);
+        if (el > 0 && !bvh_->occluded(lifted(x, n), y, self, kNoPolygon))
+            e += el * glazing_->between(x, y);
     }
     return e / double(points.size());
 }
@@ -167,7 +168,7 @@ dvec3 FinalGather::direct_sample(const dvec3& y, const dvec3& n, std::uint32_t s
         if (F <= 0) continue;
         const double pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
         const dvec3 z = area_point(P.v.data(), P.count, pick, u1, u2);
-        if (bvh_->occluded(y, z, self, e)) continue;
+        if (bvh_->occluded(lifted(y, n), z, self, e)) continue;
         E += F * glazing_->between(y, z) * scene.material_of(P).exitance();
     }
     return E + luminaires(y, n, self);
