@@ -306,6 +306,9 @@ class HEMIRAD_API Solver {
     /// luminaire: its power, A_S = 1): row sum, guard, receive, absorbed and escaped power.
     /// Returns the guard's scale of the form factors (1 when the row was not rescaled).
     double deliver(const dvec3& dB, double area_s, ShotRecord& rec);
+    /// Luminaire k's light-layer share of the solution times s (LightLayers::rescale), its
+    /// absorbed and escaped power with it.
+    void rescale_layer(std::size_t k, double s);
     void finish_shot(ShotRecord& rec, std::chrono::steady_clock::time_point start);
     void check_stop();
     /// Shoots from `polygon` (pushed): the greedy shooter, replaced by its children while

@@ -69,11 +69,15 @@ void Solver::place_luminaire(const std::string& name, const dvec3& position, con
     const std::size_t k = set_luminaire_placement(scene, name, position, aim);
     // ... its light so far (layer k, and what it has not shot) leaves the solution, and all
     // its power is unshot at the new place.
-    const auto [absorbed, escaped] = layers_->rescale(k, 0.0, hierarchy_);
-    absorbed_ += absorbed;
-    escaped_ += escaped;
+    rescale_layer(k, 0.0);
     luminaire_unshot_[k] = dvec3(scene.luminaires[k].power());
     check_stop();
+}
+
+void Solver::rescale_layer(std::size_t k, double s) {
+    const auto [absorbed, escaped] = layers_->rescale(k, s, hierarchy_);
+    absorbed_ += absorbed;
+    escaped_ += escaped;
 }
 
 void Solver::set_reflectance(const std::string& group, const dvec3& rho) {
@@ -118,9 +122,7 @@ std::pair<std::size_t, std::size_t> Solver::apply_photometry(const Photometry& b
             luminaire_unshot_[k] += d;
             continue;
         }
-        const auto [absorbed, escaped] = layers_->rescale(k, s, hierarchy_);
-        absorbed_ += absorbed;
-        escaped_ += escaped;
+        rescale_layer(k, s);
         luminaire_unshot_[k] *= s;
         ++rescaled_;
     }

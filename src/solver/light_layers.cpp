@@ -2,6 +2,7 @@
 #include "solver/light_layers.h"
 
 #include "hemirad/error.h"
+#include "solver/solver_detail.h"
 
 namespace hemirad {
 
@@ -27,32 +28,20 @@ void LightLayers::push_pull(std::uint32_t polygon) {
         if (l.light.needs_push_pull(polygon)) l.light.push_pull(polygon);
 }
 
-void LightLayers::receive(Layer& layer, const dvec3& dB, double area_s,
-                          const std::vector<Link>& links, double scale) {
-    dvec3 received(0.0);
-    for (const Link& l : links) {
-        const dvec3 irradiance = double(l.ff) * scale * dB;
-        const double a = double(layer.light.node(l.receiver).area);
-        layer.light.receive(l.receiver, irradiance);
-        received += irradiance * a;
-        layer.absorbed += (dvec3(1.0) - layer.light.reflectance(l.receiver)) * irradiance * a;
-    }
-    layer.escaped += dB * area_s - received;
-}
-
 void LightLayers::deliver_patch(const PatchAddress& sa, double area_s,
                                 const std::vector<Link>& links, double scale) {
     for (Layer& l : layers_) {
         const dvec3 dB(l.light.node(sa).dB);
         if (dB == dvec3(0.0)) continue; // none of this luminaire's light is in the shooter
-        receive(l, dB, area_s, links, scale);
+        solver_detail::deliver_links(l.light, links, dB, area_s, scale, l.absorbed, l.escaped);
         l.light.clear_unshot(sa);
     }
 }
 
 void LightLayers::deliver_luminaire(std::size_t k, const dvec3& power,
                                     const std::vector<Link>& links, double scale) {
-    receive(layers_[k], power, 1.0, links, scale);
+    Layer& l = layers_[k];
+    solver_detail::deliver_links(l.light, links, power, 1.0, scale, l.absorbed, l.escaped);
 }
 
 void LightLayers::add_unshot(std::uint32_t polygon, const dvec3& drho) {

@@ -76,8 +76,6 @@ class LightLayers {
         Hierarchy light;
         dvec3 absorbed{0.0}, escaped{0.0}; ///< of this luminaire's light [W]
     };
-    void receive(Layer& layer, const dvec3& dB, double area_s, const std::vector<Link>& links,
-                 double scale);
     std::vector<Layer> layers_;
 };
 

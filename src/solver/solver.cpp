@@ -20,6 +20,7 @@
 namespace hemirad {
 
 using solver_detail::Clock;
+using solver_detail::deliver_links;
 using solver_detail::has_negative;
 using solver_detail::magnitude;
 using solver_detail::node_power;
@@ -621,16 +622,7 @@ double Solver::deliver(const dvec3& dB, double area_s, ShotRecord& rec) {
         rec.row_guarded = true;
         ++row_guarded_;
     }
-    dvec3 received(0.0);
-    for (const Link& l : links_) {
-        const dvec3 irradiance = double(l.ff) * scale * dB;
-        const double a = double(hierarchy_.node(l.receiver).area);
-        const dvec3 rho = hierarchy_.reflectance(l.receiver); // per leaf where textured
-        hierarchy_.receive(l.receiver, irradiance);
-        received += irradiance * a;
-        absorbed_ += (dvec3(1.0) - rho) * irradiance * a;
-    }
-    escaped_ += dB * area_s - received;
+    deliver_links(hierarchy_, links_, dB, area_s, scale, absorbed_, escaped_);
     rec.t_update = since(t0);
     return scale;
 }

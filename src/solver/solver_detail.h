@@ -4,10 +4,12 @@
 #pragma once
 
 #include <cmath>
+#include <vector>
 
 #include <glm/glm.hpp>
 
 #include "core/timer.h"
+#include "hemirad/form_factors.h"
 #include "hemirad/hierarchy.h"
 #include "hemirad/photometry.h"
 
@@ -44,6 +46,24 @@ inline const Luminaire& shooting_luminaire(const Luminaire& l, Luminaire& spare)
     spare = l;
     spare.multiplier = 1;
     return spare;
+}
+
+/// A shot of unshot radiosity dB from a shooter of area `area_s` into `h`: each link's
+/// receiver gets the irradiance ff * scale * dB. Adds to `absorbed` what the receivers absorb,
+/// (1 - rho) E A, and to `escaped` the part of dB * area_s that no receiver took. The solver's
+/// hierarchy and each light layer receive their shots through this one loop.
+inline void deliver_links(Hierarchy& h, const std::vector<Link>& links, const glm::dvec3& dB,
+                          double area_s, double scale, glm::dvec3& absorbed, glm::dvec3& escaped) {
+    glm::dvec3 received(0.0);
+    for (const Link& l : links) {
+        const glm::dvec3 irradiance = double(l.ff) * scale * dB;
+        const double a = double(h.node(l.receiver).area);
+        const glm::dvec3 rho = h.reflectance(l.receiver); // per leaf where textured
+        h.receive(l.receiver, irradiance);
+        received += irradiance * a;
+        absorbed += (glm::dvec3(1.0) - rho) * irradiance * a;
+    }
+    escaped += dB * area_s - received;
 }
 
 } // namespace hemirad::solver_detail
