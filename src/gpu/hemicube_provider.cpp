@@ -7,11 +7,13 @@
 //             the analytic value
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <optional>
 
 #include "core/parallel.h"
@@ -34,6 +36,8 @@ enum class Mode { Hemicube, Analytic, Hybrid };
 /// A node seen on at least this many pixels of a point shot's hemicubes is near the point:
 /// it takes its pixels' flux, not the kernel at its centre (add_link).
 constexpr std::uint32_t kNearPixels = 16;
+/// link_touched() runs on threads in chunks of this many seen nodes (fewer: one thread).
+constexpr std::size_t kChunkNodes = 2048;
 
 /// The polygon of a luminaire's stand-in shooter: none (the renderer skips no polygon).
 constexpr std::uint32_t kNoShooterPolygon = 0xFFFFFFFFu;
@@ -71,7 +75,8 @@ class HemicubeProvider final : public FormFactorProvider {
         partial_.assign(total, 0);
         for (const Polygon& poly : scene.polygons)
             centre_.push_back(patch_geometry(poly, 0, 0).centre);
-        area_.assign(total, -1.f);
+        area_ = std::make_unique<std::atomic<float>[]>(total);
+        for (std::size_t k = 0; k < total; ++k) area_[k].store(-1.f, std::memory_order_relaxed);
         plane_eps_ = 1e-7 * scene.bounds().diagonal();
     }
 
@@ -363,7 +368,7 @@ class HemicubeProvider final : public FormFactorProvider {
         }
         sphere_centre_ = s.centre;
         sphere_axis_ = s.axis;
-        link_touched(sides[0], 1.0, links);
+        link_touched(sides[0], 1.0, gpu::face_threads(layout), links);
         if (mode_ != Mode::Hemicube)
             for (int k = s.front_only ? 1 : 0; k < 2; ++k)
                 link_missed_polygons(sides[k], *vis[k], links);
@@ -451,15 +456,21 @@ class HemicubeProvider final : public FormFactorProvider {
         return base_[p] + level_offset(int(level)) + index;
     }
 
-    float area(std::uint32_t p, std::uint32_t level, std::uint32_t index) {
-        float& a = area_[node_id(p, level, index)];
-        if (a < 0) a = float(patch_geometry(scene_->polygons[p], level, index).area);
+    // Cached on first use; link_touched's threads may both fill an entry, with one value.
+    float area(std::uint32_t p, std::uint32_t level, std::uint32_t index) const {
+        std::atomic<float>& cached = area_[node_id(p, level, index)];
+        float a = cached.load(std::memory_order_relaxed);
+        if (a < 0) {
+            a = float(patch_geometry(scene_->polygons[p], level, index).area);
+            cached.store(a, std::memory_order_relaxed);
+        }
         return a;
     }
 
     // Fully occluded: in front of the shooter, yet neither it, nor an ancestor, nor a
     // descendant was seen on the hemicube.
-    bool occluded(const Shooter& s, std::uint32_t p, std::uint32_t level, std::uint32_t index) {
+    bool occluded(const Shooter& s, std::uint32_t p, std::uint32_t level,
+                  std::uint32_t index) const {
         const std::uint64_t id = node_id(p, level, index);
         if (seen_[id] == stamp_ || below_seen_[id] == stamp_) return false;
         const bool tri = scene_->polygons[p].is_triangle();
@@ -498,7 +509,7 @@ class HemicubeProvider final : public FormFactorProvider {
         vis_[0] = vis_[1] = &vis;
         sphere_axis_ = dvec3(0.0);
         if (mode_ == Mode::Hybrid) mark_partial(vis, pixels_.data(), gpu::face_threads(layout));
-        link_touched(shooter, shooter.geometry.area, links);
+        link_touched(shooter, shooter.geometry.area, gpu::face_threads(layout), links);
         if (mode_ != Mode::Hemicube) link_missed_polygons(shooter, vis, links);
         vis_[0] = vis_[1] = nullptr;
     }
@@ -534,7 +545,7 @@ class HemicubeProvider final : public FormFactorProvider {
     // where the share of samples seen scales the value; none seen, nothing (a sliver between
     // the samples: its pixels, at most the analytic value, when a was seen itself).
     void link_visible_parts(const Shooter& shooter, const PatchAddress& a, float analytic,
-                            double pixel_power, bool has_pixels, std::vector<Link>& links) {
+                            double pixel_power, bool has_pixels, std::vector<Link>& links) const {
         const Polygon& poly = scene_->polygons[a.polygon];
         const bool tri = poly.is_triangle();
         const PatchGeometry g = patch_geometry(poly, a.level, a.index);
@@ -590,7 +601,8 @@ class HemicubeProvider final : public FormFactorProvider {
 
     // Links every node seen in this shot. pixel_scale turns a node's pixel sum into the
     // pixel value's numerator: A_S for a polygon shooter (A_S F(S->j)), 1 for a point shot.
-    void link_touched(const Shooter& shooter, double pixel_scale, std::vector<Link>& links) {
+    void link_touched(const Shooter& shooter, double pixel_scale, int threads,
+                      std::vector<Link>& links) {
         // Mark the ancestors of every seen node: "something below was seen".
         for (const PatchAddress& a : touched_) {
             const bool tri = scene_->polygons[a.polygon].is_triangle();
@@ -603,24 +615,43 @@ class HemicubeProvider final : public FormFactorProvider {
                 b = stamp_;
             }
         }
-        links.reserve(touched_.size());
-        for (const PatchAddress& a : touched_) {
-            if (!point_ && !in_front_of(shooter, a.polygon)) continue;
-            const std::uint64_t id = node_id(a.polygon, a.level, a.index);
-            if (below_seen_[id] == stamp_) {
-                // The oracle picks a level per fragment, so where GL's LOD crosses a level a
-                // node and some of its descendants are both seen. Linking both would deliver
-                // light twice to the descendants' area; the finer links win, and the rest of
-                // this node is linked by "filler" children that were not seen themselves.
-                split(shooter, a, double(pixel_sum_[id]) * pixel_scale, links);
-                continue;
-            }
-            if (mode_ == Mode::Hybrid && partial_[id] == stamp_)
-                link_visible_parts(shooter, a, analytic_[id], double(pixel_sum_[id]) * pixel_scale,
-                                   true, links);
-            else
-                add_link(shooter, a, analytic_[id], double(pixel_sum_[id]) * pixel_scale, links);
+        // The seen nodes in chunks, each linked on its own into its own list, the lists joined
+        // in order: the links come in the order one thread would give them.
+        const std::size_t n = touched_.size();
+        const std::size_t chunks = threads == 1 || n < kChunkNodes ? 1 : n / kChunkNodes;
+        chunk_links_.resize(std::max(chunk_links_.size(), chunks));
+        parallel_for(chunks, threads, [&](std::size_t c) {
+            std::vector<Link>& out = chunk_links_[c];
+            out.clear();
+            for (std::size_t k = c * n / chunks; k < (c + 1) * n / chunks; ++k)
+                link_node(shooter, touched_[k], pixel_scale, out);
+        });
+        std::size_t total = links.size();
+        for (std::size_t c = 0; c < chunks; ++c) total += chunk_links_[c].size();
+        links.reserve(total);
+        for (std::size_t c = 0; c < chunks; ++c)
+            links.insert(links.end(), chunk_links_[c].begin(), chunk_links_[c].end());
+    }
+
+    // Links seen node a (link_touched): split where seen descendants are linked too, by its
+    // visible parts where a silhouette crosses it, else whole.
+    void link_node(const Shooter& shooter, const PatchAddress& a, double pixel_scale,
+                   std::vector<Link>& links) const {
+        if (!point_ && !in_front_of(shooter, a.polygon)) return;
+        const std::uint64_t id = node_id(a.polygon, a.level, a.index);
+        if (below_seen_[id] == stamp_) {
+            // The oracle picks a level per fragment, so where GL's LOD crosses a level a
+            // node and some of its descendants are both seen. Linking both would deliver
+            // light twice to the descendants' area; the finer links win, and the rest of
+            // this node is linked by "filler" children that were not seen themselves.
+            split(shooter, a, double(pixel_sum_[id]) * pixel_scale, links);
+            return;
         }
+        if (mode_ == Mode::Hybrid && partial_[id] == stamp_)
+            link_visible_parts(shooter, a, analytic_[id], double(pixel_sum_[id]) * pixel_scale,
+                               true, links);
+        else
+            add_link(shooter, a, analytic_[id], double(pixel_sum_[id]) * pixel_scale, links);
     }
 
     // A polygon smaller than a pixel can fall between pixel centres and get no pixel at all
@@ -650,7 +681,7 @@ class HemicubeProvider final : public FormFactorProvider {
 
     // Adds the link of node a: analytic F(j->S), and the pixel sum as A_S F(S->j).
     void add_link(const Shooter& shooter, const PatchAddress& a, float analytic, double pixel_power,
-                  std::vector<Link>& links) {
+                  std::vector<Link>& links) const {
         const double area_j = area(a.polygon, a.level, a.index);
         Link l;
         l.receiver = a;
@@ -690,37 +721,38 @@ class HemicubeProvider final : public FormFactorProvider {
     // shader), visibility taken from a; a's pixels are shared among them in proportion to
     // their analytic A_j F(j->S).
     void split(const Shooter& shooter, const PatchAddress& a, double pixel_power,
-               std::vector<Link>& links) {
-        fillers_.clear();
-        collect_fillers(a);
-        if (fillers_.empty()) return;
+               std::vector<Link>& links) const {
+        std::vector<PatchAddress> fillers;
+        collect_fillers(a, fillers);
+        if (fillers.empty()) return;
         const Polygon& poly = scene_->polygons[a.polygon];
-        filler_values_.clear();
+        std::vector<double> values;
+        values.reserve(fillers.size());
         double total = 0;
-        for (const PatchAddress& c : fillers_) {
+        for (const PatchAddress& c : fillers) {
             const PatchGeometry g = patch_geometry(poly, c.level, c.index);
             const double f = analytic_at(shooter, g.centre, poly.normal);
-            filler_values_.push_back(f);
+            values.push_back(f);
             total += f * g.area;
         }
-        for (std::size_t k = 0; k < fillers_.size(); ++k) {
-            const PatchAddress& c = fillers_[k];
+        for (std::size_t k = 0; k < fillers.size(); ++k) {
+            const PatchAddress& c = fillers[k];
             const double share =
-                total > 0 ? filler_values_[k] * area(c.polygon, c.level, c.index) / total : 0;
-            add_link(shooter, c, float(filler_values_[k]), pixel_power * share, links);
+                total > 0 ? values[k] * area(c.polygon, c.level, c.index) / total : 0;
+            add_link(shooter, c, float(values[k]), pixel_power * share, links);
         }
     }
 
-    void collect_fillers(const PatchAddress& a) {
+    void collect_fillers(const PatchAddress& a, std::vector<PatchAddress>& fillers) const {
         const bool tri = scene_->polygons[a.polygon].is_triangle();
         for (std::uint32_t c : patch_children(tri, a.level, a.index)) {
             const PatchAddress ca{a.polygon, a.level + 1, c};
             const std::uint64_t id = node_id(ca.polygon, ca.level, ca.index);
             if (seen_[id] == stamp_) continue; // linked on its own
             if (below_seen_[id] == stamp_)
-                collect_fillers(ca); // partly linked below
+                collect_fillers(ca, fillers); // partly linked below
             else
-                fillers_.push_back(ca);
+                fillers.push_back(ca);
         }
     }
 
@@ -739,12 +771,13 @@ class HemicubeProvider final : public FormFactorProvider {
     std::unique_ptr<gpu::HemicubeRenderer> renderer_;
     std::deque<gpu::HemicubeLayout> layouts_; // deque: references stay valid as it grows
     std::vector<std::uint64_t> base_;
-    std::vector<float> pixels_, pixel_sum_, analytic_, area_;
-    std::vector<std::uint32_t> pixel_count_; ///< per node seen, its pixels in this shot
-    std::vector<float> probe_pixels_;        ///< probe_view()'s coarse hemicube
-    double probe_seconds_ = 0;               ///< probe_view()s since the last shot's timings
-    std::vector<float> pixels_back_;         ///< a point shot's hemicube against the aim
-    const Sphere* point_ = nullptr;          ///< during shoot_sphere(): the point shot
+    std::vector<float> pixels_, pixel_sum_, analytic_;
+    std::unique_ptr<std::atomic<float>[]> area_; ///< per node, its area (area()), -1 until used
+    std::vector<std::uint32_t> pixel_count_;     ///< per node seen, its pixels in this shot
+    std::vector<float> probe_pixels_;            ///< probe_view()'s coarse hemicube
+    double probe_seconds_ = 0;                   ///< probe_view()s since the last shot's timings
+    std::vector<float> pixels_back_;             ///< a point shot's hemicube against the aim
+    const Sphere* point_ = nullptr;              ///< during shoot_sphere(): the point shot
     /// During a shot's linking: the visibility of its hemicubes (against and along the axis;
     /// a patch shot has one, in both) and a point shot's centre and axis (0: a patch shot).
     const gpu::HemicubeVisibility* vis_[2] = {nullptr, nullptr};
@@ -758,8 +791,8 @@ class HemicubeProvider final : public FormFactorProvider {
     double near_fraction_ = 0;
     bool point_shot_ = false; ///< the last shot was shoot_sphere()'s
     std::vector<std::uint32_t> seen_, below_seen_, polygon_seen_;
-    std::vector<PatchAddress> touched_, fillers_;
-    std::vector<double> filler_values_;
+    std::vector<PatchAddress> touched_;
+    std::vector<std::vector<Link>> chunk_links_; ///< link_touched(): per chunk of seen nodes
     std::vector<Timing> timings_;
     std::uint32_t stamp_ = 0;
     double max_power_ = 0;

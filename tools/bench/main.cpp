@@ -18,6 +18,7 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -227,6 +228,60 @@ struct Sums {
     double select = 0, push_pull = 0, ff = 0, update = 0, render = 0, readback = 0, reduce = 0;
     double cull = 0, probe = 0;
     double links = 0, refined = 0, probes = 0, discarded = 0;
+};
+
+// The bare hemicube (shot_overhead): for each shot's shooter, the renderer alone at the
+// same resolution in the same process, rendered (with a glFinish, so that the rasterisation
+// is counted) and read back. The first shooter's is kept apart (the solver's first shot
+// generates its shader code; this renderer's is generated in an untimed warm-up draw).
+struct BareHemicube {
+    double render = 0, readback = 0, first = 0;
+#if HEMIRAD_BENCH_BARE_RENDERER
+    BareHemicube(const Scene& scene, const Solver& solver, const Spec& spec)
+        : scene_(scene), resolution_(spec.resolution) {
+        if (!spec.overhead) return;
+        renderer_.emplace(scene, solver.hierarchy().discretisation(), spec.resolution);
+        layout_ = gpu::make_hemicube_layout(spec.resolution);
+    }
+    void measure(const ShotRecord& r) {
+        Shooter s;
+        s.address = r.shooter;
+        const Polygon& poly = scene_.polygons[r.shooter.polygon];
+        s.geometry = patch_geometry(poly, r.shooter.level, r.shooter.index);
+        s.normal = poly.normal;
+        s.unshot_power = r.shooter_power;
+        if (!warm_) { // first-draw code generation
+            renderer_->render(s, layout_, 0.0, 0);
+            renderer_->read_back(layout_, rgba_);
+            warm_ = true;
+        }
+        auto t0 = Clock::now();
+        renderer_->render(s, layout_, 0.0, 0);
+        glFinish();
+        render += since(t0);
+        t0 = Clock::now();
+        renderer_->read_back(layout_, rgba_);
+        readback += since(t0);
+        if (first == 0) first = render + readback;
+    }
+    static const char* method() {
+        return "HemicubeRenderer, after each shot";
+    }
+
+  private:
+    const Scene& scene_;
+    int resolution_;
+    std::optional<gpu::HemicubeRenderer> renderer_;
+    gpu::HemicubeLayout layout_;
+    std::vector<float> rgba_;
+    bool warm_ = false;
+#else
+    BareHemicube(const Scene&, const Solver&, const Spec&) {}
+    void measure(const ShotRecord&) {}
+    static const char* method() {
+        return "provider_phases";
+    }
+#endif
 };
 
 using bench::luminance;
@@ -547,8 +602,11 @@ void run_child(const Spec& spec, const std::string& office) {
     const double peak_after_setup = peak_rss_mib(), rss_after_setup = rss_mib();
 
     Sums sum;
-    std::vector<Shooter> shooters;  // for the bare hemicube
     double first_shot_seconds = -1; // the first shot generates the renderer's shader code
+    // The bare hemicube of each shot's shooter, rendered right after the shot (outside the
+    // solver's clock): both sides are measured under the same load, so that the machine's
+    // drift over a run does not show in their ratio.
+    BareHemicube bare(scene, solver, spec);
     while (solver.step()) {
         if (first_shot_seconds < 0) first_shot_seconds = solver.seconds();
         const ShotRecord& r = solver.last_shot();
@@ -572,15 +630,7 @@ void run_child(const Spec& spec, const std::string& office) {
         sum.refined += r.refined;
         sum.probes += r.probes;
         sum.discarded += r.discarded;
-        if (spec.overhead && r.luminaire < 0) {
-            Shooter s;
-            s.address = r.shooter;
-            const Polygon& poly = scene.polygons[r.shooter.polygon];
-            s.geometry = patch_geometry(poly, r.shooter.level, r.shooter.index);
-            s.normal = poly.normal;
-            s.unshot_power = r.shooter_power;
-            shooters.push_back(s);
-        }
+        if (spec.overhead && r.luminaire < 0) bare.measure(r);
     }
     const long shots = solver.shots();
     const double seconds = solver.seconds();
@@ -648,28 +698,10 @@ void run_child(const Spec& spec, const std::string& office) {
 
     double ratio = 0;
     if (spec.overhead && shots > 0) {
-        // Bare hemicube at the same resolution, same shooters, same process: render (with a
-        // glFinish, so that the rasterisation is counted here) and read back.
-        double bare_render = 0, bare_readback = 0, bare_first = 0;
-        const char* method = "provider_phases";
-#if HEMIRAD_BENCH_BARE_RENDERER
-        method = "HemicubeRenderer";
-        gpu::HemicubeRenderer renderer(scene, solver.hierarchy().discretisation(), spec.resolution);
-        const gpu::HemicubeLayout layout = gpu::make_hemicube_layout(spec.resolution);
-        std::vector<float> rgba;
-        renderer.render(shooters.front(), layout, 0.0, false); // first-draw code generation
-        renderer.read_back(layout, rgba);
-        for (const Shooter& s : shooters) {
-            auto t0 = Clock::now();
-            renderer.render(s, layout, 0.0, false);
-            glFinish();
-            bare_render += since(t0);
-            t0 = Clock::now();
-            renderer.read_back(layout, rgba);
-            bare_readback += since(t0);
-            if (&s == &shooters.front()) bare_first = bare_render + bare_readback;
-        }
-#else
+        double bare_render = bare.render, bare_readback = bare.readback;
+        const double bare_first = bare.first;
+        const char* method = bare.method();
+#if !HEMIRAD_BENCH_BARE_RENDERER
         bare_render = sum.render;
         bare_readback = sum.readback;
 #endif
