@@ -270,7 +270,15 @@ TEST_F(CavityRoomRows, WithoutTheGuardNoRowCreatesLight) {
     // floor strip x 1.3..1.7, z 0.7..2, which runs under the floating hollow box, 0.3 m up),
     // 1.097 without split_intersections; 1.0000 with --ff hemicube. Smallest cases:
     // make_light_room(0.5, 2) with the slab alone, 1.027; with the floating hollow box's outer
-    // box alone, 1.018 (hemicube 1.0000 in both). Remove the skip when fixed.
+    // box alone, 1.018 (hemicube 1.0000 in both). Diagnosed (2026-12-03): the worst row is
+    // now 1.067, the level-0 floor strip x 0.5..1.3, z 0.4..0.7 between the slab and the sunk
+    // box: its analytic links sum to 1.068, its pixels to 0.978. Parallax: a node seen from
+    // the strip's centre takes F(j -> S) of the whole strip unoccluded, though the sunk box
+    // hides it from the strip's near half (the far wall just above the box's shadow); the
+    // solver refines a shooter for parallax only where the misplaced power matters
+    // (shooter_parallax), so weak shooters keep rows over 1. Averaging the kernel over
+    // sub-cells of near receivers (centre-value quadrature) changed the row by 2e-4: not the
+    // cause. Remove the skip when fixed.
     GTEST_SKIP() << "engine bug: hybrid rows up to 1.06 near the floating box";
     const Scene scene = validation::make_cavity_room();
     SolverOptions o = gpu_options(1e-3);
