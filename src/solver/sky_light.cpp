@@ -38,12 +38,11 @@ bool sky_escapes(const Bounds& b, const Bvh& bvh, const dvec3& origin, const dve
     return !bvh.occluded(origin, origin + reach * w, self, kNoPolygon);
 }
 
-SkyDelivery deliver_skylight(const Scene& scene, Hierarchy& hierarchy, int threads) {
+SkyDelivery deliver_skylight(const Scene& scene, const Bvh& bvh, const GlazingTracer& glazing,
+                             Hierarchy& hierarchy, int threads) {
     if (!scene.sky) return {};
     const Sky& sky = *scene.sky;
     if (!(sky.scale > 0 || sky.ground_luminance() > 0)) return {};
-    const Bvh bvh(scene);
-    const GlazingTracer glazing(scene);
     const Bounds bounds = scene.bounds();
     const double offset = 1e-9 * bounds.diagonal();
     const auto count = std::uint32_t(scene.polygons.size());

@@ -27,8 +27,10 @@ inline constexpr int kSkyLeafRays = 16;
 /// its own point jittered over the leaf's area, L(w) the sky's luminance (sky.h) for a ray that
 /// leaves the scene, 0 for one that meets a polygon (pdf cos/pi: E = pi E[L] per sample), times
 /// the transmittance of the window panes it crosses (glazing.h).
-/// Nothing for a scene without a sky. threads: 0 = one per core.
-SkyDelivery deliver_skylight(const Scene& scene, Hierarchy& hierarchy, int threads = 0);
+/// Nothing for a scene without a sky. `bvh` and `glazing` are the scene's (built once for the
+/// sun and the sky). threads: 0 = one per core.
+SkyDelivery deliver_skylight(const Scene& scene, const Bvh& bvh, const GlazingTracer& glazing,
+                             Hierarchy& hierarchy, int threads = 0);
 
 /// The sky's direct irradiance at x with unit normal n on polygon `self` (kNoPolygon off the
 /// surfaces) in a scene of bounds `bounds` [W unit^-2], equal RGB. Stratified cosine rays from

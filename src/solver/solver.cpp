@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "ff/bvh.h"
 #include "ff/glazing_tracer.h"
 #include "hemirad/error.h"
 #include "hemirad/memory_guard.h"
@@ -122,13 +123,17 @@ void Solver::init() {
     luminaire_unshot_.clear();
     for (const Luminaire& l : scene_->luminaires) luminaire_unshot_.push_back(dvec3(l.power()));
     // The sun's direct light, once, before the first shot (sun_light.h): what it delivers is
-    // emitted power, its reflected part the leaves' unshot power.
-    const SunDelivery sun = deliver_sunlight(*scene_, hierarchy_);
-    absorbed_ += sun.absorbed;
-    // The sky's (and the ground's) likewise (sky_light.h).
-    const SkyDelivery sky = deliver_skylight(*scene_, hierarchy_);
-    absorbed_ += sky.absorbed;
-    daylight_ = sun.power + sky.power;
+    // emitted power, its reflected part the leaves' unshot power. The sky's (and the
+    // ground's) likewise (sky_light.h); their shadow rays share one BVH.
+    daylight_ = dvec3(0.0);
+    if (scene_->sun || scene_->sky) {
+        const Bvh bvh(*scene_);
+        const GlazingTracer panes(*scene_);
+        const SunDelivery sun = deliver_sunlight(*scene_, bvh, panes, hierarchy_);
+        const SkyDelivery sky = deliver_skylight(*scene_, bvh, panes, hierarchy_);
+        absorbed_ += sun.absorbed + sky.absorbed;
+        daylight_ = sun.power + sky.power;
+    }
     emitted_ += daylight_;
     rho_max_ = scene_->max_reflectance();
     // Default minimum shooter size: the size of the smallest leaf patches' polygons' leaves.

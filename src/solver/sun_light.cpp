@@ -62,11 +62,10 @@ double ray_offset(const Scene& scene) {
 
 } // namespace
 
-SunDelivery deliver_sunlight(const Scene& scene, Hierarchy& hierarchy, int threads) {
+SunDelivery deliver_sunlight(const Scene& scene, const Bvh& bvh, const GlazingTracer& glazing,
+                             Hierarchy& hierarchy, int threads) {
     if (!scene.sun || !(scene.sun->normal_irradiance() > 0)) return {};
     const Sun& sun = *scene.sun;
-    const Bvh bvh(scene);
-    const GlazingTracer glazing(scene);
     const double offset = ray_offset(scene);
     const auto count = std::uint32_t(scene.polygons.size());
     // Per polygon, the irradiance of each leaf (computed in parallel, received in order).

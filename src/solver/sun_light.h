@@ -22,8 +22,10 @@ using SunDelivery = LeafDelivery;
 /// from the centres of a 4 x 4 grid of equal cells over the leaf, and of an 8 x 8 grid where
 /// some of those 16 are shadowed and some not (a shadow's edge crosses the leaf); a ray through
 /// window panes counts their transmittance (glazing.h) instead of 1. Nothing for
-/// a scene without a sun, or with one at or below the horizon. threads: 0 = one per core.
-SunDelivery deliver_sunlight(const Scene& scene, Hierarchy& hierarchy, int threads = 0);
+/// a scene without a sun, or with one at or below the horizon. `bvh` and `glazing` are the
+/// scene's (built once for the sun and the sky). threads: 0 = one per core.
+SunDelivery deliver_sunlight(const Scene& scene, const Bvh& bvh, const GlazingTracer& glazing,
+                             Hierarchy& hierarchy, int threads = 0);
 
 /// The sun's direct irradiance at point x with unit normal n on polygon `self` (kNoPolygon off
 /// the surfaces), one shadow ray along s from x + offset n: E_n/683 max(0, n.s) or 0 in
