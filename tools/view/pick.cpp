@@ -19,6 +19,10 @@ double PickResult::lux() const {
     return kLumensPerWatt * luminance();
 }
 
+Picker::Picker(const Scene& scene) : bvh_(scene) {}
+
+Picker::~Picker() = default;
+
 PickResult Picker::pick(const Hierarchy& h, const Camera& camera, int width, int height, int x,
                         int y) const {
     // The same ray as the renderer's projection (discontinuities.cpp): through the pixel centre.
@@ -41,8 +45,12 @@ PickResult Picker::pick(const Hierarchy& h, const Camera& camera, int width, int
     r.group = scene.groups[poly.group];
     // One probe through the code path of `hemirad solve --probes` (default gather options):
     // point 0 of a probe file gets the same random stream.
-    const FinalGather gather(h, GatherOptions{});
-    const std::vector<ProbeValue> v = evaluate_probes({Probe{r.position, r.normal}}, h, &gather);
+    if (!gather_ || gathered_ != &h) {
+        gather_ = std::make_unique<FinalGather>(h, GatherOptions{});
+        gathered_ = &h;
+    }
+    const std::vector<ProbeValue> v =
+        evaluate_probes({Probe{r.position, r.normal}}, h, gather_.get());
     if (v[0].E) r.E = *v[0].E;
     if (v[0].polygon) r.group = scene.groups[scene.polygons[*v[0].polygon].group];
     return r;

@@ -3,11 +3,16 @@
 // agree at the same point.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "ff/bvh.h"
 #include "hemirad/hierarchy.h"
 #include "hemirad/scene.h"
+
+namespace hemirad {
+class FinalGather;
+}
 
 namespace hemirad::view {
 
@@ -22,7 +27,10 @@ struct PickResult {
 
 class Picker {
   public:
-    explicit Picker(const Scene& scene) : bvh_(scene) {}
+    explicit Picker(const Scene& scene);
+    ~Picker();
+    Picker(const Picker&) = delete;
+    Picker& operator=(const Picker&) = delete;
     /// The camera ray through the centre of pixel (x, y) of a width x height window (origin
     /// top left; the renderer's perspective), its nearest hit, and the final gather there.
     /// `h` must be push-pulled (Solver::solution()).
@@ -31,6 +39,10 @@ class Picker {
 
   private:
     Bvh bvh_;
+    /// The final gather of the last hierarchy picked on (it reads the hierarchy live, and its
+    /// BVH and emitter list are the scene's): built on the first pick, again for another one.
+    mutable std::unique_ptr<FinalGather> gather_;
+    mutable const Hierarchy* gathered_ = nullptr;
 };
 
 /// The script's output line: "pick X Y: x y z nx ny nz GROUP E lx" (lux) or "... E W/unit^2";
