@@ -273,23 +273,66 @@ TEST(Sum, SmallAngleAccuracy) {
 // takes all the light sent towards it; a point between the slabs (inside the object, or
 // behind the wall a lobe's polygons cover) none; towards a point along y no lobe emits.
 TEST(ClusterLobes, ShareInFrontOfTheLobesPlanes) {
+    // Receivers face the centre (the origin); planes without a box pass any receiver.
+    const auto facing_origin = [](const dvec3& x) { return -glm::normalize(x); };
     ClusterShooter c;
     c.normals = {{1, 0, 0}, {-1, 0, 0}};
     c.weights = {0.5, 0.5};
-    c.offsets = {0.5, 0.5};
-    EXPECT_DOUBLE_EQ(c.share_in_front({2, 0, 0}, 1e-9), 1.0);
-    EXPECT_DOUBLE_EQ(c.share_in_front({2, 2, 0}, 1e-9), 1.0);
-    EXPECT_DOUBLE_EQ(c.share_in_front({-3, 1, 0}, 1e-9), 1.0);
-    EXPECT_DOUBLE_EQ(c.share_in_front({0.2, 0, 0}, 1e-9), 0.0) << "between the slabs";
-    EXPECT_DOUBLE_EQ(c.share_in_front({0.5, 0.1, 0}, 1e-9), 0.0) << "in the +x lobe's plane";
-    EXPECT_DOUBLE_EQ(c.share_in_front({0, 2, 0}, 1e-9), 0.0) << "no lobe emits along y";
+    c.planes = {{0, 0.5, 0.5}, {1, 0.5, 0.5}};
+    EXPECT_DOUBLE_EQ(c.share_in_front({2, 0, 0}, facing_origin({2, 0, 0}), 1e-9), 1.0);
+    EXPECT_DOUBLE_EQ(c.share_in_front({2, 2, 0}, facing_origin({2, 2, 0}), 1e-9), 1.0);
+    EXPECT_DOUBLE_EQ(c.share_in_front({-3, 1, 0}, facing_origin({-3, 1, 0}), 1e-9), 1.0);
+    EXPECT_DOUBLE_EQ(c.share_in_front({0.2, 0, 0}, facing_origin({0.2, 0, 0}), 1e-9), 0.0)
+        << "between the slabs";
+    EXPECT_DOUBLE_EQ(c.share_in_front({0.5, 0.1, 0}, facing_origin({0.5, 0.1, 0}), 1e-9), 0.0)
+        << "in the +x lobe's plane";
+    EXPECT_DOUBLE_EQ(c.share_in_front({0, 2, 0}, facing_origin({0, 2, 0}), 1e-9), 0.0)
+        << "no lobe emits along y";
     // Lobes +x and +y (weights 1/2): at (1, 1) the +x lobe's plane is passed, the +y lobe's
     // (its polygons at y >= 3) not: the +x lobe's half of the intensity there.
     c.normals = {{1, 0, 0}, {0, 1, 0}};
-    c.offsets = {0.5, 3.0};
-    EXPECT_NEAR(c.share_in_front({1, 1, 0}, 1e-9), 0.5, 1e-12);
-    c.offsets.clear();
-    EXPECT_DOUBLE_EQ(c.share_in_front({0.2, 0, 0}, 1e-9), 1.0) << "no planes: all";
+    c.planes = {{0, 0.5, 0.5}, {1, 3.0, 0.5}};
+    EXPECT_NEAR(c.share_in_front({1, 1, 0}, facing_origin({1, 1, 0}), 1e-9), 0.5, 1e-12);
+    c.planes.clear();
+    EXPECT_DOUBLE_EQ(c.share_in_front({0.2, 0, 0}, facing_origin({0.2, 0, 0}), 1e-9), 1.0)
+        << "no planes: all";
+}
+
+// ClusterShooter planes: a cluster whose -x lobe holds a lit wall face (x = 4.9, 99 % of the
+// power) and the inner face of the slab's far side (x = 5.1, 1 %), shooting from inside the
+// slab (x = 5.05). Kept apart (a gap of 0.2 against 4 mm), a receiver inside the slab
+// (x = 5.0) takes only the inner face's 1 %; one plane at their lowest offset (as when a lobe
+// had one plane) would give it all. A receiver in the room takes all; one in the room facing
+// away from both faces, none.
+TEST(ClusterLobes, PlanesAWallApartKeepTheirLightApart) {
+    ClusterShooter c;
+    c.centre = {5.05, 1.5, 1.5};
+    c.normals = {{-1, 0, 0}};
+    c.weights = {1.0};
+    ClusterShooter::Plane wall{0, -4.9, 0.99, {4.9, 0, 0}, {4.9, 3, 3}};
+    ClusterShooter::Plane inner{0, -5.1, 0.01, {5.1, 0, 0}, {5.1, 3, 3}};
+    c.add_lobe_planes(0, {wall, inner}, 0.004, 16);
+    ASSERT_EQ(c.planes.size(), 2u);
+    EXPECT_NEAR(c.share_in_front({5.0, 1.0, 1.5}, {0, 1, 0}, 1e-9), 0.01, 1e-12) << "in the slab";
+    EXPECT_NEAR(c.share_in_front({3.0, 1.0, 1.5}, {1, 0, 0}, 1e-9), 1.0, 1e-12) << "the room";
+    EXPECT_EQ(c.share_in_front({3.0, 1.0, 1.5}, {-1, 0, 0}, 1e-9), 0.0) << "facing away";
+    // Within the gap they share one plane, at the lower offset, with both weights.
+    ClusterShooter merged = c;
+    merged.planes.clear();
+    merged.add_lobe_planes(0, {wall, inner}, 0.5, 16);
+    ASSERT_EQ(merged.planes.size(), 1u);
+    EXPECT_DOUBLE_EQ(merged.planes[0].offset, -5.1);
+    EXPECT_DOUBLE_EQ(merged.planes[0].weight, 1.0);
+    EXPECT_NEAR(merged.share_in_front({5.0, 1.0, 1.5}, {0, 1, 0}, 1e-9), 1.0, 1e-12);
+    // Over max_planes, the closest neighbours merge first.
+    ClusterShooter three;
+    three.normals = {{0, 1, 0}};
+    three.weights = {1.0};
+    three.add_lobe_planes(0, {{0, 0.0, 0.5}, {0, 0.75, 0.25}, {0, 0.8, 0.25}}, 0.001, 2);
+    ASSERT_EQ(three.planes.size(), 2u);
+    EXPECT_DOUBLE_EQ(three.planes[0].offset, 0.0);
+    EXPECT_DOUBLE_EQ(three.planes[1].offset, 0.75);
+    EXPECT_DOUBLE_EQ(three.planes[1].weight, 0.5);
 }
 
 } // namespace

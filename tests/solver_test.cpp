@@ -7,6 +7,7 @@
 #include "hemirad/provider.h"
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"
+#include "solver/cluster_tree.h"
 #include "solver/matrix_solver.h"
 
 using namespace hemirad;
@@ -152,6 +153,34 @@ TEST(SolverStops, MaxShotsAndNoEmitter) {
     while (s.step()) ++n;
     EXPECT_EQ(n, 3);
     EXPECT_EQ(s.stop_reason(), StopReason::MaxShots);
+}
+
+// in_thin_gap: a cluster's centre inside a 20 cm wall slab (its two faces among the cluster's
+// polygons) is in a thin gap, as it is with the slab's faces two-sided (the twins back to
+// back with them do not count as a second side); the air of the room beside it, a point
+// beyond the slab's edge, or a gap wider than asked, is not.
+TEST(ClusterCentre, InsideAWallSlabIsInAThinGap) {
+    Scene s;
+    s.materials.push_back({"grey", dvec3(0.5), dvec3(0.0)});
+    s.groups.push_back("g");
+    add_polygon(s, {{4.9, 0, 0}, {4.9, 0, 3}, {4.9, 3, 3}, {4.9, 3, 0}}, 0, 0); // faces -x
+    add_polygon(s, {{5.1, 0, 0}, {5.1, 3, 0}, {5.1, 3, 3}, {5.1, 0, 3}}, 0, 0); // faces +x
+    add_polygon(s, {{0, 0, 0}, {0, 0, 3}, {4.9, 0, 3}, {4.9, 0, 0}}, 0, 0);     // floor
+    finish_scene(s, "slab");
+    ASSERT_EQ(s.polygons.size(), 3u);
+    ASSERT_NEAR(s.polygons[0].normal.x, -1, 1e-12);
+    ASSERT_NEAR(s.polygons[1].normal.x, 1, 1e-12);
+    const std::vector<std::uint32_t> all = {0, 1, 2};
+    EXPECT_TRUE(in_thin_gap(s, all, {4.95, 1.5, 1.5}, 0.5));
+    EXPECT_FALSE(in_thin_gap(s, all, {4.95, 1.5, 1.5}, 0.15)) << "the gap is 0.2";
+    EXPECT_FALSE(in_thin_gap(s, all, {4.7, 1.5, 1.5}, 0.5)) << "in the room";
+    EXPECT_FALSE(in_thin_gap(s, all, {4.95, 1.5, 3.5}, 0.5)) << "beyond the slab's edge";
+    EXPECT_FALSE(in_thin_gap(s, {0, 2}, {4.95, 1.5, 1.5}, 0.5)) << "one face only";
+    make_two_sided(s, [](std::uint32_t) { return true; });
+    ASSERT_EQ(s.polygons.size(), 6u);
+    EXPECT_TRUE(in_thin_gap(s, {0, 1, 2, 3, 4, 5}, {4.95, 1.5, 1.5}, 0.5)) << "two-sided";
+    EXPECT_FALSE(in_thin_gap(s, {0, 3}, {4.95, 1.5, 1.5}, 0.5)) << "a face and its twin";
+    EXPECT_FALSE(in_thin_gap(s, {0, 1, 2, 3, 4, 5}, {4.7, 1.5, 1.5}, 0.5)) << "two-sided room";
 }
 
 } // namespace

@@ -3,6 +3,7 @@
 // links. The CPU reference providers and the GPU hemicube provider stand behind it alike.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,10 +34,16 @@ struct ClusterShooter {
     double radius = 0;           ///< of its bounding sphere [unit]
     std::vector<dvec3> normals;  ///< emission lobes (unit normals)...
     std::vector<double> weights; ///< ...and their shares of the power (sum 1)...
-    /// ...and per lobe the plane its polygons lie in front of: min over them of normal . corner.
-    /// A lobe lights only receivers in front of its plane (share_in_front): one behind it is
-    /// inside the object the cluster wraps, or behind the wall it covers.
-    std::vector<double> offsets;
+    /// ...and the planes its polygons lie in front of (add_lobe_planes). Light from a plane
+    /// reaches only receivers in front of it (share_in_front): one behind it is inside the
+    /// object the cluster wraps, or behind the wall it covers.
+    struct Plane {
+        std::uint32_t lobe = 0;      ///< index into normals
+        double offset = 0;           ///< the plane: normal . x = offset
+        double weight = 0;           ///< its share of the power (a lobe's planes sum to its weight)
+        dvec3 lo{-1e300}, hi{1e300}; ///< the box around its polygons
+    };
+    std::vector<Plane> planes;
     /// Its polygons, sorted: not drawn (they do not occlude its light), never linked.
     std::vector<std::uint32_t> members;
     double unshot_power = 0;   ///< sum over RGB [W]; providers may adapt to it
@@ -50,9 +57,19 @@ struct ClusterShooter {
     double intensity(const dvec3& d) const;
     /// Share of the power emitted into the half space d . axis < 0.
     double back_share() const;
-    /// Of the intensity towards point x, the share from lobes whose plane x is in front of
-    /// (by more than eps); 1 without offsets, 0 where no lobe emits towards x.
-    double share_in_front(const dvec3& x, double eps) const;
+    /// Of the intensity towards a receiver at x facing n, the share from planes that x is in
+    /// front of and that have some of their box in front of x's plane (by more than eps):
+    /// what the cluster's polygons could send it, where its centre alone would send it more
+    /// (a centre inside a wall sees the wall's inner faces). 1 without planes, 0 where no lobe
+    /// emits towards x.
+    double share_in_front(const dvec3& x, const dvec3& n, double eps) const;
+    /// Adds lobe `lobe`'s planes from its polygons' planes (offset: the min over a polygon's
+    /// corners of normal . corner; weight; box): polygons whose offsets lie within `gap` of
+    /// the next share a plane at their lowest offset, so that planes a wall's thickness apart
+    /// (a slab's two faces, a floor and a table top) stay apart. Over `max_planes`, the
+    /// closest neighbours merge first.
+    void add_lobe_planes(std::uint32_t lobe, std::vector<Plane> polygons, double gap,
+                         std::size_t max_planes);
 };
 
 /// One receiving node and the form factor from it to the shooter, F(j -> S): the fraction

@@ -89,18 +89,61 @@ double ClusterShooter::intensity(const dvec3& d) const {
     return i / std::numbers::pi;
 }
 
-double ClusterShooter::share_in_front(const dvec3& x, double eps) const {
-    if (offsets.empty()) return 1.0;
+double ClusterShooter::share_in_front(const dvec3& x, const dvec3& n, double eps) const {
+    if (planes.empty()) return 1.0;
     const dvec3 d = x - centre;
     const double len = glm::length(d);
     if (!(len > 0)) return 0.0;
     double all = 0, front = 0;
-    for (std::size_t k = 0; k < normals.size(); ++k) {
-        const double i = weights[k] * std::max(0.0, glm::dot(normals[k], d) / len);
-        all += i;
-        if (glm::dot(normals[k], x) > offsets[k] + eps) front += i;
+    for (std::size_t k = 0; k < normals.size(); ++k)
+        all += weights[k] * std::max(0.0, glm::dot(normals[k], d) / len);
+    const double receiver_plane = glm::dot(n, x);
+    for (const Plane& p : planes) {
+        const dvec3& normal = normals[p.lobe];
+        if (!(glm::dot(normal, x) > p.offset + eps)) continue;
+        // The box's farthest corner along n (the box may be empty: lo > hi).
+        const dvec3 far = glm::max(n * p.lo, n * p.hi);
+        if (!(far.x + far.y + far.z > receiver_plane + eps)) continue;
+        front += p.weight * std::max(0.0, glm::dot(normal, d) / len);
     }
-    return all > 0 ? front / all : 0.0;
+    return all > 0 ? std::min(front / all, 1.0) : 0.0;
+}
+
+void ClusterShooter::add_lobe_planes(std::uint32_t lobe, std::vector<Plane> polygons, double gap,
+                                     std::size_t max_planes) {
+    if (polygons.empty()) return;
+    std::sort(polygons.begin(), polygons.end(),
+              [](const Plane& a, const Plane& b) { return a.offset < b.offset; });
+    // Runs of offsets, each within `gap` of the one before: the plane at a run's lowest
+    // offset, `high` its highest.
+    std::vector<Plane> runs;
+    std::vector<double> high;
+    for (const Plane& p : polygons) {
+        if (runs.empty() || p.offset - high.back() > gap) {
+            runs.push_back(p);
+            runs.back().lobe = lobe;
+            high.push_back(p.offset);
+            continue;
+        }
+        Plane& r = runs.back();
+        r.weight += p.weight;
+        r.lo = glm::min(r.lo, p.lo);
+        r.hi = glm::max(r.hi, p.hi);
+        high.back() = p.offset;
+    }
+    while (runs.size() > std::max<std::size_t>(max_planes, 1)) {
+        std::size_t best = 1;
+        for (std::size_t k = 2; k < runs.size(); ++k)
+            if (runs[k].offset - high[k - 1] < runs[best].offset - high[best - 1]) best = k;
+        Plane& r = runs[best - 1];
+        r.weight += runs[best].weight;
+        r.lo = glm::min(r.lo, runs[best].lo);
+        r.hi = glm::max(r.hi, runs[best].hi);
+        high[best - 1] = high[best];
+        runs.erase(runs.begin() + std::ptrdiff_t(best));
+        high.erase(high.begin() + std::ptrdiff_t(best));
+    }
+    planes.insert(planes.end(), runs.begin(), runs.end());
 }
 
 double ClusterShooter::back_share() const {

@@ -260,19 +260,20 @@ class HemicubeProvider final : public FormFactorProvider {
         // How wrong a point is as a stand-in for the cluster: the light received, weighted by
         // (R / r)^2 (the relative error of a point's kernel at distance r from a cluster of
         // radius R, capped at 1), over the light received.
-        // Each lobe lights only what lies in front of its plane: a receiver behind it is
-        // inside the object the cluster wraps, or behind the wall it covers (the twin of a
-        // lit wall, facing into the slab), which the point sees and the lobe's polygons do
-        // not. A link keeps the share of the intensity towards it of the lobes it is in front
-        // of.
-        double near = 0, total = 0;
+        // Each of a lobe's planes lights only what lies in front of it and faces some of its
+        // polygons: a receiver behind it is inside the object the cluster wraps, or behind the
+        // wall it covers (the twin of a lit wall, facing into the slab), which the point sees
+        // and the plane's polygons do not. A link keeps the share of the intensity towards it
+        // of the planes that pass it (ClusterShooter::share_in_front).
+        double near = 0, total = 0, seen = 0;
         const double R2 = c.radius * c.radius;
         const double eps = 1e-6 * std::max(c.radius, 1e-300);
         std::size_t kept = 0;
         for (Link l : links) {
             const Polygon& poly = scene_->polygons[l.receiver.polygon];
             const PatchGeometry g = patch_geometry(poly, l.receiver.level, l.receiver.index);
-            const float share = float(c.share_in_front(g.centre, eps));
+            seen += double(l.ff) * g.area;
+            const float share = float(c.share_in_front(g.centre, poly.normal, eps));
             if (!(share > 0)) continue;
             l.ff *= share;
             l.ff_analytic *= share;
@@ -285,6 +286,17 @@ class HemicubeProvider final : public FormFactorProvider {
         }
         links.resize(kept);
         near_fraction_ = total > 0 ? near / total : 0;
+        // The light the point sent where its polygons could not goes, like the backs', to
+        // what they can light; the solver counts it as misplaced with the backs' share (a
+        // cluster that sends most of its light there is refused as an enclosed one).
+        const double behind = seen > 0 ? std::clamp(1.0 - total / seen, 0.0, 1.0) : 0.0;
+        const float lit = float(1.0 / std::max(1.0 - behind, 0.05));
+        for (Link& l : links) {
+            l.ff *= lit;
+            l.ff_analytic *= lit;
+            l.ff_pixel *= lit;
+        }
+        backface_ += (1.0 - backface_) * behind;
     }
 
   private:

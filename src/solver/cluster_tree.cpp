@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <utility>
 
 namespace hemirad {
 
@@ -67,6 +68,39 @@ std::uint32_t ClusterTree::build(std::uint32_t begin, std::uint32_t end, std::ui
     node.right = build(mid, end, id, centroid);
     nodes_[id] = node;
     return id;
+}
+
+namespace {
+
+// Whether p's foot on the plane of convex polygon `poly` lies inside it.
+bool covers(const Polygon& poly, const dvec3& p) {
+    for (int k = 0; k < poly.count; ++k) {
+        const dvec3& a = poly.v[k];
+        const dvec3& b = poly.v[(k + 1) % poly.count];
+        if (glm::dot(glm::cross(b - a, p - a), poly.normal) < 0) return false;
+    }
+    return true;
+}
+
+} // namespace
+
+bool in_thin_gap(const Scene& scene, const std::vector<std::uint32_t>& polygons, const dvec3& p,
+                 double max_gap) {
+    // The polygons near p that cover it: their normals and p's signed distances.
+    std::vector<std::pair<dvec3, double>> near;
+    for (std::uint32_t i : polygons) {
+        const Polygon& poly = scene.polygons[i];
+        const double s = glm::dot(poly.normal, p - poly.v[0]);
+        if (std::abs(s) >= max_gap || !(std::abs(s) > 1e-9 * max_gap) || !covers(poly, p)) continue;
+        for (const auto& [n, t] : near) {
+            const double c = glm::dot(n, poly.normal);
+            // Parallel within about 25 degrees, and p between the two planes.
+            if (std::abs(c) > 0.9 && s * t * c < 0 && std::abs(s) + std::abs(t) < max_gap)
+                return true;
+        }
+        near.emplace_back(poly.normal, s);
+    }
+    return false;
 }
 
 } // namespace hemirad

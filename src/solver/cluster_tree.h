@@ -55,4 +55,11 @@ class ClusterTree {
     std::vector<std::uint32_t> order_, leaf_, parent_;
 };
 
+/// Whether point p lies in a gap narrower than max_gap between two of `polygons` (roughly
+/// parallel, on either side of p, each covering p's foot on its plane): inside a wall slab or
+/// a thin panel whose two faces are both among them. A cluster's centre there sees the inner
+/// faces of the slab, which none of its polygons can light.
+bool in_thin_gap(const Scene& scene, const std::vector<std::uint32_t>& polygons, const dvec3& p,
+                 double max_gap);
+
 } // namespace hemirad
