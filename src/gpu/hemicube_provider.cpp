@@ -73,8 +73,13 @@ class HemicubeProvider final : public FormFactorProvider {
         polygon_seen_.assign(scene.polygons.size(), 0);
         below_seen_.assign(total, 0);
         partial_.assign(total, 0);
-        for (const Polygon& poly : scene.polygons)
+        for (const Polygon& poly : scene.polygons) {
             centre_.push_back(patch_geometry(poly, 0, 0).centre);
+            double r = 0;
+            for (int k = 0; k < poly.count; ++k)
+                r = std::max(r, glm::length(poly.v[k] - centre_.back()));
+            radius_.push_back(r);
+        }
         area_ = std::make_unique<std::atomic<float>[]>(total);
         for (std::size_t k = 0; k < total; ++k) area_[k].store(-1.f, std::memory_order_relaxed);
         plane_eps_ = 1e-7 * scene.bounds().diagonal();
@@ -465,6 +470,7 @@ class HemicubeProvider final : public FormFactorProvider {
     // by a's size over its gap to the shooter (over 1/8, 1/4, 1/2: on paper 000's cube at
     // 4x4 polygons the faces' factors are then within 0.06 % of the closed forms, where the
     // centres alone are 1 % off).
+    static constexpr double kMeanRatio = 0.125; ///< size over gap from which a node is averaged
     float area_mean_analytic(const Shooter& s, const PatchAddress& a, const PatchGeometry& g,
                              float at_centre) const {
         if (point_) return at_centre;
@@ -472,7 +478,10 @@ class HemicubeProvider final : public FormFactorProvider {
         const double r = glm::length(g.centre - s.geometry.centre);
         const double gap = std::max(r - shooter_radius_, 0.25 * r);
         const double ratio = std::sqrt(g.area) / std::max(gap, 1e-300);
-        const int depth = ratio > 0.5 ? 3 : ratio > 0.25 ? 2 : ratio > 0.125 ? 1 : 0;
+        const int depth = ratio > 4 * kMeanRatio   ? 3
+                          : ratio > 2 * kMeanRatio ? 2
+                          : ratio > kMeanRatio     ? 1
+                                                   : 0;
         if (depth == 0) return at_centre;
         const bool tri = poly.is_triangle();
         std::vector<std::uint32_t> level{a.index}, next;
@@ -488,6 +497,17 @@ class HemicubeProvider final : public FormFactorProvider {
             total += analytic_at(s, patch_geometry(poly, a.level + std::uint32_t(depth), i).centre,
                                  poly.normal);
         return float(total / double(level.size()));
+    }
+
+    // Whether a node of polygon p of area area_j may be near enough to a patch shooter for
+    // area_mean_analytic() to average it: the same test, with the polygon's nearest possible
+    // point for the node's centre (no node geometry needed for the many far ones).
+    bool may_be_near(const Shooter& s, std::uint32_t p, double area_j) const {
+        if (point_) return false;
+        const double r = std::max(glm::length(centre_[p] - s.geometry.centre) - radius_[p], 0.0);
+        // (1 + 1e-6): area_j is the node's area in float.
+        return std::sqrt(area_j) * (1 + 1e-6) >
+               kMeanRatio * std::max(r - shooter_radius_, 0.25 * r);
     }
 
     // Does polygon p reach in front of a patch shooter's plane? One wholly behind it, or in it
@@ -738,7 +758,7 @@ class HemicubeProvider final : public FormFactorProvider {
     void add_link(const Shooter& shooter, const PatchAddress& a, float analytic, double pixel_power,
                   std::vector<Link>& links) const {
         const double area_j = area(a.polygon, a.level, a.index);
-        if (mode_ == Mode::Hybrid)
+        if (mode_ == Mode::Hybrid && may_be_near(shooter, a.polygon, area_j))
             analytic = area_mean_analytic(
                 shooter, a, patch_geometry(scene_->polygons[a.polygon], a.level, a.index),
                 analytic);
@@ -848,7 +868,8 @@ class HemicubeProvider final : public FormFactorProvider {
     std::vector<float> ids_;                              ///< pixels_'s IDs (fill_cracks)
     std::array<std::vector<float>, 2> sphere_ids_;        ///< the same for a point's two sides
     std::vector<dvec3> centre_;                           ///< per polygon, its level-0 centre
-    const std::vector<std::uint32_t>* hidden_ = nullptr;  ///< during shoot_cluster(): members
+    std::vector<double> radius_; ///< per polygon, its farthest corner from centre_ [unit]
+    const std::vector<std::uint32_t>* hidden_ = nullptr; ///< during shoot_cluster(): members
     double near_fraction_ = 0;
     bool point_shot_ = false; ///< the last shot was shoot_sphere()'s
     std::vector<std::uint32_t> seen_, below_seen_, polygon_seen_;
