@@ -33,6 +33,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <system_error>
 
 #include "core/geometry.h"
 #include "core/line_reader.h"
@@ -472,8 +473,9 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
     if (!(options.max_reflectance > 0 && options.max_reflectance < 1))
         throw InputError("--max-reflectance " + num(options.max_reflectance) +
                          " must be in (0, 1)");
-    if (!fs::exists(path)) throw InputError(path, 0, "no such file");
-    if (fs::is_directory(path)) throw InputError(path, 0, "is a directory, not an OBJ file");
+    std::error_code ec; // a name too long for the system is an error, not an exception
+    if (!fs::exists(path, ec)) throw InputError(path, 0, ec ? ec.message() : "no such file");
+    if (fs::is_directory(path, ec)) throw InputError(path, 0, "is a directory, not an OBJ file");
 
     Notes notes;
     std::vector<dvec3> vertices;
@@ -799,10 +801,11 @@ void finish_surfaces(Scene& scene, const ObjOptions& options,
 Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin,
                  const ObjOptions& obj) {
     if (is_builtin(name_or_path)) return make_builtin(name_or_path, builtin);
-    if (!fs::exists(name_or_path))
+    std::error_code ec;
+    if (!fs::exists(name_or_path, ec))
         throw InputError(name_or_path, 0,
-                         std::string("no such file, and not a built-in scene (") + builtin_names() +
-                             ")");
+                         (ec ? ec.message() : std::string("no such file")) +
+                             ", and not a built-in scene (" + builtin_names() + ")");
     if (is_scene_json(name_or_path)) return load_scene_json(name_or_path, obj);
     if (is_gltf(name_or_path)) return load_gltf(name_or_path, obj);
     return load_obj(name_or_path, obj);

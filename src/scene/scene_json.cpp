@@ -9,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <system_error>
 
 #include <nlohmann/json.hpp>
 
@@ -596,7 +597,10 @@ Scene load_scene_json(const std::string& path, const ObjOptions& obj) {
         if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
             r.fail(at, "'" + file + "': expected an OBJ or glTF file (.obj, .gltf, .glb)");
         const std::string resolved = r.resolve(file);
-        if (!fs::exists(resolved)) r.fail(at, "'" + file + "': no such file (" + resolved + ")");
+        std::error_code ec; // a name too long for the system is an error, not an exception
+        if (!fs::exists(resolved, ec))
+            r.fail(at, "'" + file + "': " + (ec ? ec.message() : std::string("no such file")) +
+                           " (" + resolved + ")");
         ObjOptions part = obj; // the surfaces are finished once, merged (below)
         part.finish_surfaces = false;
         merge(scene, is_gltf(resolved) ? load_gltf(resolved, part) : load_obj(resolved, part));
