@@ -112,6 +112,11 @@ double ClusterShooter::share_in_front(const dvec3& x, const dvec3& n, double eps
 void ClusterShooter::add_lobe_planes(std::uint32_t lobe, std::vector<Plane> polygons, double gap,
                                      std::size_t max_planes) {
     if (polygons.empty()) return;
+    const auto absorb = [](Plane& into, const Plane& p) {
+        into.weight += p.weight;
+        into.lo = glm::min(into.lo, p.lo);
+        into.hi = glm::max(into.hi, p.hi);
+    };
     std::sort(polygons.begin(), polygons.end(),
               [](const Plane& a, const Plane& b) { return a.offset < b.offset; });
     // Runs of offsets, each within `gap` of the one before: the plane at a run's lowest
@@ -125,20 +130,14 @@ void ClusterShooter::add_lobe_planes(std::uint32_t lobe, std::vector<Plane> poly
             high.push_back(p.offset);
             continue;
         }
-        Plane& r = runs.back();
-        r.weight += p.weight;
-        r.lo = glm::min(r.lo, p.lo);
-        r.hi = glm::max(r.hi, p.hi);
+        absorb(runs.back(), p);
         high.back() = p.offset;
     }
     while (runs.size() > std::max<std::size_t>(max_planes, 1)) {
         std::size_t best = 1;
         for (std::size_t k = 2; k < runs.size(); ++k)
             if (runs[k].offset - high[k - 1] < runs[best].offset - high[best - 1]) best = k;
-        Plane& r = runs[best - 1];
-        r.weight += runs[best].weight;
-        r.lo = glm::min(r.lo, runs[best].lo);
-        r.hi = glm::max(r.hi, runs[best].hi);
+        absorb(runs[best - 1], runs[best]);
         high[best - 1] = high[best];
         runs.erase(runs.begin() + std::ptrdiff_t(best));
         high.erase(high.begin() + std::ptrdiff_t(best));

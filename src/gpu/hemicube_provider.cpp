@@ -75,10 +75,7 @@ class HemicubeProvider final : public FormFactorProvider {
         partial_.assign(total, 0);
         for (const Polygon& poly : scene.polygons) {
             centre_.push_back(patch_geometry(poly, 0, 0).centre);
-            double r = 0;
-            for (int k = 0; k < poly.count; ++k)
-                r = std::max(r, glm::length(poly.v[k] - centre_.back()));
-            radius_.push_back(r);
+            radius_.push_back(reach(poly.v, poly.count, centre_.back()));
         }
         area_ = std::make_unique<std::atomic<float>[]>(total);
         for (std::size_t k = 0; k < total; ++k) area_[k].store(-1.f, std::memory_order_relaxed);
@@ -148,10 +145,8 @@ class HemicubeProvider final : public FormFactorProvider {
         last_height_ = layout.height;
         last_layout_ = &layout;
         last_shooter_ = shooter;
-        shooter_radius_ = 0;
-        for (int k = 0; k < shooter.geometry.count; ++k)
-            shooter_radius_ = std::max(shooter_radius_, glm::length(shooter.geometry.corners[k] -
-                                                                    shooter.geometry.centre));
+        shooter_radius_ =
+            reach(shooter.geometry.corners, shooter.geometry.count, shooter.geometry.centre);
         timings_.push_back({"readback", since(t0)});
         t0 = Clock::now();
         reduce(shooter, layout, links);
@@ -497,6 +492,13 @@ class HemicubeProvider final : public FormFactorProvider {
             total += analytic_at(s, patch_geometry(poly, a.level + std::uint32_t(depth), i).centre,
                                  poly.normal);
         return float(total / double(level.size()));
+    }
+
+    // The farthest of `count` corners from `centre`.
+    static double reach(const std::array<dvec3, 4>& corners, int count, const dvec3& centre) {
+        double r = 0;
+        for (int k = 0; k < count; ++k) r = std::max(r, glm::length(corners[k] - centre));
+        return r;
     }
 
     // Whether a node of polygon p of area area_j may be near enough to a patch shooter for
