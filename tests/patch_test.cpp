@@ -63,6 +63,20 @@ TEST_P(PatchTreeTest, ChildAreasSumToParentAndLevelsToPolygon) {
     }
 }
 
+// patch_centre() stands in for patch_geometry().centre where only the centre is needed (the
+// provider's near test and visibility samples): it must give the very same point, or a node
+// could be averaged or sampled at one place and linked at another.
+TEST_P(PatchTreeTest, CentreAloneIsTheGeometrysCentre) {
+    const Polygon p = poly();
+    for (std::uint32_t level = 0; level < 6; ++level)
+        for (std::uint32_t i = 0; i < (1u << (2 * level)); ++i) {
+            const dvec3 c = patch_centre(p, level, i), g = patch_geometry(p, level, i).centre;
+            ASSERT_EQ(c.x, g.x) << "level " << level << " index " << i;
+            ASSERT_EQ(c.y, g.y) << "level " << level << " index " << i;
+            ASSERT_EQ(c.z, g.z) << "level " << level << " index " << i;
+        }
+}
+
 TEST_P(PatchTreeTest, PointLocationFindsThePatchOfItsCentre) {
     const Polygon p = poly();
     for (std::uint32_t level = 0; level < 5; ++level) {

@@ -51,6 +51,9 @@ struct PatchGeometry {
 HEMIRAD_API PatchGeometry patch_geometry(const Polygon& polygon, std::uint32_t level,
                                          std::uint32_t index);
 
+/// The centre alone of patch_geometry() (the same value, at a fifth of the cost).
+HEMIRAD_API dvec3 patch_centre(const Polygon& polygon, std::uint32_t level, std::uint32_t index);
+
 /// Maps parameter (u,v) to a point on the polygon (bilinear for quads, affine for triangles).
 HEMIRAD_API dvec3 polygon_point(const Polygon& polygon, double u, double v);
 

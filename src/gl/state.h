@@ -33,6 +33,7 @@ class StateGuard {
         cull_ = glIsEnabled(GL_CULL_FACE);
         blend_ = glIsEnabled(GL_BLEND);
         scissor_ = glIsEnabled(GL_SCISSOR_TEST);
+        glGetIntegerv(GL_SCISSOR_BOX, scissor_box_);
     }
     ~StateGuard() {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_fb_));
@@ -51,6 +52,7 @@ class StateGuard {
         set(GL_CULL_FACE, cull_);
         set(GL_BLEND, blend_);
         set(GL_SCISSOR_TEST, scissor_);
+        glScissor(scissor_box_[0], scissor_box_[1], scissor_box_[2], scissor_box_[3]);
     }
     StateGuard(const StateGuard&) = delete;
     StateGuard& operator=(const StateGuard&) = delete;
@@ -58,7 +60,8 @@ class StateGuard {
   private:
     static void set(GLenum cap, GLboolean on) { on ? glEnable(cap) : glDisable(cap); }
 
-    GLint draw_fb_ = 0, read_fb_ = 0, viewport_[4] = {}, program_ = 0, vao_ = 0;
+    GLint draw_fb_ = 0, read_fb_ = 0, viewport_[4] = {}, scissor_box_[4] = {}, program_ = 0,
+          vao_ = 0;
     GLint clip_origin_ = GL_LOWER_LEFT, clip_depth_ = GL_NEGATIVE_ONE_TO_ONE;
     GLint depth_func_ = GL_LESS, front_face_ = GL_CCW, cull_face_mode_ = GL_BACK;
     GLint blend_func_[4] = {GL_ONE, GL_ZERO, GL_ONE, GL_ZERO}; ///< src/dst RGB, src/dst alpha

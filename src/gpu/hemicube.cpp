@@ -265,7 +265,10 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
     glDepthFunc(GL_GREATER);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     glViewport(0, 0, layout.width, layout.height);
-    glDisable(GL_SCISSOR_TEST);
+    // The clears (and draws) kept to this layout's corner of the framebuffer, sized for the
+    // finest layout: a coarse view probe would otherwise clear the whole of it.
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, layout.width, layout.height);
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
     glClearNamedFramebufferfi(fbo_.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);

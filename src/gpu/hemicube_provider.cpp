@@ -470,28 +470,33 @@ class HemicubeProvider final : public FormFactorProvider {
                              float at_centre) const {
         if (point_) return at_centre;
         const Polygon& poly = scene_->polygons[a.polygon];
-        const double r = glm::length(g.centre - s.geometry.centre);
-        const double gap = std::max(r - shooter_radius_, 0.25 * r);
-        const double ratio = std::sqrt(g.area) / std::max(gap, 1e-300);
-        const int depth = ratio > 4 * kMeanRatio   ? 3
-                          : ratio > 2 * kMeanRatio ? 2
-                          : ratio > kMeanRatio     ? 1
-                                                   : 0;
+        const int depth = mean_depth(glm::length(g.centre - s.geometry.centre), g.area);
         if (depth == 0) return at_centre;
         const bool tri = poly.is_triangle();
-        std::vector<std::uint32_t> level{a.index}, next;
+        std::array<std::uint32_t, 64> parts{a.index}; // 4^depth, depth <= 3
+        std::size_t count = 1;
         for (int d = 0; d < depth; ++d) {
-            next.clear();
-            for (std::uint32_t i : level)
-                for (std::uint32_t c : patch_children(tri, a.level + std::uint32_t(d), i))
-                    next.push_back(c);
-            level.swap(next);
+            // In place, last first: part k's children go to 4k..4k+3, at or after k.
+            for (std::size_t k = count; k-- > 0;) {
+                const std::array<std::uint32_t, 4> c =
+                    patch_children(tri, a.level + std::uint32_t(d), parts[k]);
+                std::copy(c.begin(), c.end(), parts.begin() + std::ptrdiff_t(4 * k));
+            }
+            count *= 4;
         }
         double total = 0;
-        for (std::uint32_t i : level)
-            total += analytic_at(s, patch_geometry(poly, a.level + std::uint32_t(depth), i).centre,
+        for (std::size_t k = 0; k < count; ++k)
+            total += analytic_at(s, patch_centre(poly, a.level + std::uint32_t(depth), parts[k]),
                                  poly.normal);
-        return float(total / double(level.size()));
+        return float(total / double(count));
+    }
+
+    // How many times area_mean_analytic() halves a node of area `area` whose centre lies r from
+    // a patch shooter's centre (0: its centre's value stands).
+    int mean_depth(double r, double area) const {
+        const double gap = std::max(r - shooter_radius_, 0.25 * r);
+        const double ratio = std::sqrt(area) / std::max(gap, 1e-300);
+        return ratio > 4 * kMeanRatio ? 3 : ratio > 2 * kMeanRatio ? 2 : ratio > kMeanRatio ? 1 : 0;
     }
 
     // The farthest of `count` corners from `centre`.
@@ -501,15 +506,17 @@ class HemicubeProvider final : public FormFactorProvider {
         return r;
     }
 
-    // Whether a node of polygon p of area area_j may be near enough to a patch shooter for
-    // area_mean_analytic() to average it: the same test, with the polygon's nearest possible
-    // point for the node's centre (no node geometry needed for the many far ones).
-    bool may_be_near(const Shooter& s, std::uint32_t p, double area_j) const {
+    // Whether node a of area area_j may be near enough to a patch shooter for
+    // area_mean_analytic() to average it: the same test, first with its polygon's nearest
+    // possible point for the node's centre, then with its centre alone (no node geometry for
+    // the many far ones). (1 + 2e-6): area_j is the node's area in float.
+    bool may_be_near(const Shooter& s, const PatchAddress& a, double area_j) const {
         if (point_) return false;
+        const std::uint32_t p = a.polygon;
         const double r = std::max(glm::length(centre_[p] - s.geometry.centre) - radius_[p], 0.0);
-        // (1 + 1e-6): area_j is the node's area in float.
-        return std::sqrt(area_j) * (1 + 1e-6) >
-               kMeanRatio * std::max(r - shooter_radius_, 0.25 * r);
+        if (mean_depth(r, area_j * (1 + 2e-6)) == 0) return false;
+        const dvec3 c = patch_centre(scene_->polygons[p], a.level, a.index);
+        return mean_depth(glm::length(c - s.geometry.centre), area_j * (1 + 2e-6)) > 0;
     }
 
     // Does polygon p reach in front of a patch shooter's plane? One wholly behind it, or in it
@@ -563,16 +570,34 @@ class HemicubeProvider final : public FormFactorProvider {
         touched_.clear();
         const gpu::HemicubeFrame frame = gpu::hemicube_frame(shooter);
         gpu::fill_cracks(*scene_, layout, frame, pixels_.data(), shooter.geometry.centre, ids_);
-        double backface = 0;
+        const float* rgba = pixels_.data();
         const std::size_t n = std::size_t(layout.width) * layout.height;
+        // Neighbouring pixels mostly show the same node: a run of them is added to it at once.
+        double backface = 0;
+        std::size_t run = n; // the run's first pixel, n: none
+        float run_weight = 0;
+        std::uint32_t run_count = 0;
         for (std::size_t i = 0; i < n; ++i) {
-            const float b = pixels_[4 * i + 2];
+            const float* px = &rgba[4 * i];
+            const float b = px[2];
             if (b < 0.5f) {
                 if (b < -0.5f) backface += layout.delta_ff[i];
                 continue;
             }
-            scan_pixel(pixels_.data(), i, layout.delta_ff[i]);
+            if (run < n) {
+                const float* r = &rgba[4 * run];
+                if (r[2] == b && r[1] == px[1] && r[0] == px[0]) {
+                    run_weight += layout.delta_ff[i];
+                    ++run_count;
+                    continue;
+                }
+                scan_pixels(rgba, run, run_weight, run_count);
+            }
+            run = i;
+            run_weight = layout.delta_ff[i];
+            run_count = 1;
         }
+        if (run < n) scan_pixels(rgba, run, run_weight, run_count);
         backface_ = backface;
         const gpu::HemicubeVisibility vis(*scene_, layout, frame, pixels_.data(),
                                           shooter.geometry.centre, ids_.data());
@@ -622,7 +647,7 @@ class HemicubeProvider final : public FormFactorProvider {
         int seen = visible(g.centre, a.polygon) ? 1 : 0;
         const std::array<std::uint32_t, 4> children = patch_children(tri, a.level, a.index);
         for (std::uint32_t c : children)
-            seen += visible(patch_geometry(poly, a.level + 1, c).centre, a.polygon) ? 1 : 0;
+            seen += visible(patch_centre(poly, a.level + 1, c), a.polygon) ? 1 : 0;
         const double area_j = area(a.polygon, a.level, a.index);
         if (analytic < 0) analytic = float(analytic_at(shooter, g.centre, poly.normal));
         analytic = area_mean_analytic(shooter, a, g, analytic);
@@ -659,6 +684,11 @@ class HemicubeProvider final : public FormFactorProvider {
     // Pixel `i` of `rgba` shows a front (B > 0): marks its node seen (taking its analytic
     // value from alpha the first time) and adds `weight` to the node's pixel sum.
     void scan_pixel(const float* rgba, std::size_t i, float weight) {
+        scan_pixels(rgba, i, weight, 1);
+    }
+
+    // The same for `count` pixels showing pixel i's node, of summed weight `weight`.
+    void scan_pixels(const float* rgba, std::size_t i, float weight, std::uint32_t count) {
         const float* px = &rgba[4 * i];
         const auto p = std::uint32_t(px[2]) - 1;
         polygon_seen_[p] = stamp_;
@@ -673,7 +703,7 @@ class HemicubeProvider final : public FormFactorProvider {
             touched_.push_back({p, level, index});
         }
         pixel_sum_[id] += weight;
-        ++pixel_count_[id];
+        pixel_count_[id] += count;
     }
 
     // Links every node seen in this shot. pixel_scale turns a node's pixel sum into the
@@ -698,10 +728,13 @@ class HemicubeProvider final : public FormFactorProvider {
         const std::size_t chunks = threads == 1 || n < kChunkNodes ? 1 : n / kChunkNodes;
         chunk_links_.resize(std::max(chunk_links_.size(), chunks));
         parallel_for(chunks, threads, [&](std::size_t c) {
-            std::vector<Link>& out = chunk_links_[c];
+            // Filled on this thread's stack (chunk_links_'s vectors share cache lines: each
+            // push_back would move the line between the cores), its memory kept for later.
+            std::vector<Link> out = std::move(chunk_links_[c]);
             out.clear();
             for (std::size_t k = c * n / chunks; k < (c + 1) * n / chunks; ++k)
                 link_node(shooter, touched_[k], pixel_scale, out);
+            chunk_links_[c] = std::move(out);
         });
         std::size_t total = links.size();
         for (std::size_t c = 0; c < chunks; ++c) total += chunk_links_[c].size();
@@ -760,7 +793,7 @@ class HemicubeProvider final : public FormFactorProvider {
     void add_link(const Shooter& shooter, const PatchAddress& a, float analytic, double pixel_power,
                   std::vector<Link>& links) const {
         const double area_j = area(a.polygon, a.level, a.index);
-        if (mode_ == Mode::Hybrid && may_be_near(shooter, a.polygon, area_j))
+        if (mode_ == Mode::Hybrid && may_be_near(shooter, a, area_j))
             analytic = area_mean_analytic(
                 shooter, a, patch_geometry(scene_->polygons[a.polygon], a.level, a.index),
                 analytic);

@@ -75,6 +75,24 @@ PatchGeometry patch_geometry(const Polygon& p, std::uint32_t level, std::uint32_
     return g;
 }
 
+dvec3 patch_centre(const Polygon& p, std::uint32_t level, std::uint32_t index) {
+    const std::uint32_t n = 1u << level;
+    const double h = 1.0 / n;
+    if (p.is_triangle()) {
+        const TriCell c = tri_cell(n, index);
+        const double u0 = c.i * h, v0 = c.j * h;
+        if (!c.inverted)
+            return (polygon_point(p, u0, v0) + polygon_point(p, u0 + h, v0) +
+                    polygon_point(p, u0, v0 + h)) /
+                   3.0;
+        return (polygon_point(p, u0 + h, v0 + h) + polygon_point(p, u0, v0 + h) +
+                polygon_point(p, u0 + h, v0)) /
+               3.0;
+    }
+    const std::uint32_t x = index % n, y = index / n;
+    return polygon_point(p, x * h + 0.5 * h, y * h + 0.5 * h);
+}
+
 std::uint32_t patch_at(const Polygon& p, std::uint32_t level, double u, double v) {
     const std::uint32_t n = 1u << level;
     u = std::clamp(u, 0.0, 1.0);
