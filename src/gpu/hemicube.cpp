@@ -390,7 +390,12 @@ void HemicubeRenderer::draw_polygons(std::uint32_t begin, std::uint32_t end) {
     drawn_ += end - begin;
     const GLint first = first_[begin];
     const GLsizei count = first_[end - 1] + count_[end - 1] - first;
-    if (!draw_first_.empty() && draw_first_.back() + draw_count_.back() == first)
+    // Ranges are joined up to kMaxDrawVertices: Mesa's draw module (llvmpipe), on a draw
+    // that needs clipping, goes over all of the draw's vertices at each flush of its small
+    // vertex buffer, a cost that grows with the square of a draw's length (the courtyard's
+    // solve: 17 % faster than with the ranges joined without limit).
+    if (!draw_first_.empty() && draw_first_.back() + draw_count_.back() == first &&
+        draw_count_.back() + count <= kMaxDrawVertices)
         draw_count_.back() += count;
     else
         draw_first_.push_back(first), draw_count_.push_back(count);

@@ -110,6 +110,8 @@ class HemicubeRenderer {
         dvec3 lo, hi;
     };
     static constexpr std::uint32_t kClusterSize = 64;
+    /// Longest range of vertices that joining neighbouring ranges makes (draw_polygons()).
+    static constexpr GLsizei kMaxDrawVertices = 192;
     std::vector<Cluster> clusters_;
     std::vector<std::uint32_t> hidden_;             ///< set_hidden(), sorted
     bool hidden_fronts_drawn_ = false;              ///< set_hidden()'s fronts_drawn
