@@ -38,6 +38,8 @@ enum class Mode { Hemicube, Analytic, Hybrid };
 constexpr std::uint32_t kNearPixels = 16;
 /// link_touched() runs on threads in chunks of this many seen nodes (fewer: one thread).
 constexpr std::size_t kChunkNodes = 2048;
+/// link_missed_polygons() runs on threads in chunks of this many polygons.
+constexpr std::size_t kChunkPolygons = 8192;
 
 /// The polygon of a luminaire's stand-in shooter: none (the renderer skips no polygon).
 constexpr std::uint32_t kNoShooterPolygon = 0xFFFFFFFFu;
@@ -79,7 +81,8 @@ class HemicubeProvider final : public FormFactorProvider {
         }
         area_ = std::make_unique<std::atomic<float>[]>(total);
         for (std::size_t k = 0; k < total; ++k) area_[k].store(-1.f, std::memory_order_relaxed);
-        plane_eps_ = 1e-7 * scene.bounds().diagonal();
+        diagonal_ = scene.bounds().diagonal();
+        plane_eps_ = 1e-7 * diagonal_;
     }
 
     // Its GL objects go with its own context current (another solver's may be).
@@ -191,7 +194,7 @@ class HemicubeProvider final : public FormFactorProvider {
         s.centre = luminaire.position;
         s.axis = luminaire.aim;
         s.first = luminaire.c0;
-        s.half = 0.005 * std::max(scene_->bounds().diagonal(), 1e-300);
+        s.half = 0.005 * std::max(diagonal_, 1e-300);
         s.intensity = [&](const dvec3& d) { return luminaire.intensity(d) * per_watt; };
         shoot_sphere(s, options_.resolution ? options_.resolution : options_.max_resolution, links);
     }
@@ -239,7 +242,7 @@ class HemicubeProvider final : public FormFactorProvider {
         s.centre = c.centre;
         s.axis = c.axis;
         s.first = perpendicular(c.axis);
-        s.half = std::max(c.radius, 1e-9 * scene_->bounds().diagonal());
+        s.half = std::max(c.radius, 1e-9 * diagonal_);
         const double back = c.back_share();
         s.front_only = back < 1e-3;
         const double scale = s.front_only ? 1.0 / std::max(1.0 - back, 1e-12) : 1.0;
@@ -268,12 +271,25 @@ class HemicubeProvider final : public FormFactorProvider {
         double near = 0, total = 0, seen = 0;
         const double R2 = c.radius * c.radius;
         const double eps = 1e-6 * std::max(c.radius, 1e-300);
+        // Each link's receiver and share on threads (in chunks), the sums after, in order.
+        receivers_.resize(links.size());
+        const std::size_t chunks = std::max<std::size_t>(1, links.size() / kChunkNodes);
+        parallel_for(chunks, 0, [&](std::size_t k) {
+            for (std::size_t i = k * links.size() / chunks; i < (k + 1) * links.size() / chunks;
+                 ++i) {
+                const PatchAddress& a = links[i].receiver;
+                const Polygon& poly = scene_->polygons[a.polygon];
+                const PatchGeometry g = patch_geometry(poly, a.level, a.index);
+                receivers_[i] = {g.centre, g.area,
+                                 float(c.share_in_front(g.centre, poly.normal, eps))};
+            }
+        });
         std::size_t kept = 0;
-        for (Link l : links) {
-            const Polygon& poly = scene_->polygons[l.receiver.polygon];
-            const PatchGeometry g = patch_geometry(poly, l.receiver.level, l.receiver.index);
+        for (std::size_t i = 0; i < links.size(); ++i) {
+            Link l = links[i];
+            const Receiver& g = receivers_[i];
             seen += double(l.ff) * g.area;
-            const float share = float(c.share_in_front(g.centre, poly.normal, eps));
+            const float share = g.share;
             if (!(share > 0)) continue;
             l.ff *= share;
             l.ff_analytic *= share;
@@ -342,21 +358,35 @@ class HemicubeProvider final : public FormFactorProvider {
             gpu::fill_cracks(*scene_, layout, frame, buffers[k]->data(), s.centre, sphere_ids_[k]);
             const double d2 = 4.0 / (double(layout.res) * layout.res); // pixel area at 1
             const std::vector<float>& px = *buffers[k];
-            for (int f = 0; f < 5; ++f) {
+            // Each pixel's flux on the faces' threads (-1: no front there), then the nodes'
+            // sums in order.
+            flux_.resize(std::size_t(layout.width) * layout.height);
+            std::array<double, 5> face_back{};
+            parallel_for(5, gpu::face_threads(layout), [&](std::size_t f) {
                 const gpu::HemicubeLayout::Face& face = layout.faces[f];
                 for (int j = 0; j < face.h; ++j)
                     for (int i = 0; i < face.w; ++i) {
                         const std::size_t at = std::size_t(face.y + j) * layout.width + face.x + i;
                         const float id = px[4 * at + 2];
+                        flux_[at] = -1.f;
                         if (id > -0.5f && id < 0.5f) continue; // nothing
-                        const dvec3 u = gpu::hemicube_direction(layout, frame, f, i, j);
+                        const dvec3 u = gpu::hemicube_direction(layout, frame, int(f), i, j);
                         const double c = glm::dot(u, frame.dir[f]);
                         const double omega = d2 * c * c * c; // solid angle of the pixel
                         const double flux = s.intensity(u) * omega;
                         if (id < 0)
-                            back += flux;
+                            face_back[f] += flux;
                         else
-                            scan_pixel(px.data(), at, float(flux));
+                            flux_[at] = float(flux);
+                    }
+            });
+            for (int f = 0; f < 5; ++f) {
+                back += face_back[std::size_t(f)];
+                const gpu::HemicubeLayout::Face& face = layout.faces[f];
+                for (int j = 0; j < face.h; ++j)
+                    for (int i = 0; i < face.w; ++i) {
+                        const std::size_t at = std::size_t(face.y + j) * layout.width + face.x + i;
+                        if (flux_[at] >= 0) scan_pixel(px.data(), at, flux_[at]);
                     }
             }
             t_reduce += since(t0);
@@ -722,18 +752,26 @@ class HemicubeProvider final : public FormFactorProvider {
                 b = stamp_;
             }
         }
-        // The seen nodes in chunks, each linked on its own into its own list, the lists joined
-        // in order: the links come in the order one thread would give them.
-        const std::size_t n = touched_.size();
-        const std::size_t chunks = threads == 1 || n < kChunkNodes ? 1 : n / kChunkNodes;
+        link_in_chunks(touched_.size(), kChunkNodes, threads, links,
+                       [&](std::size_t k, std::vector<Link>& out) {
+                           link_node(shooter, touched_[k], pixel_scale, out);
+                       });
+    }
+
+    // Calls link(k, out) for k in [0, n), in chunks of about `chunk` on `threads`, each chunk
+    // into its own list, the lists appended to `links` in order: the links come in the order
+    // one thread would give them.
+    template <class Link_k>
+    void link_in_chunks(std::size_t n, std::size_t chunk, int threads, std::vector<Link>& links,
+                        Link_k&& link) {
+        const std::size_t chunks = threads == 1 || n < chunk ? 1 : n / chunk;
         chunk_links_.resize(std::max(chunk_links_.size(), chunks));
         parallel_for(chunks, threads, [&](std::size_t c) {
             // Filled on this thread's stack (chunk_links_'s vectors share cache lines: each
             // push_back would move the line between the cores), its memory kept for later.
             std::vector<Link> out = std::move(chunk_links_[c]);
             out.clear();
-            for (std::size_t k = c * n / chunks; k < (c + 1) * n / chunks; ++k)
-                link_node(shooter, touched_[k], pixel_scale, out);
+            for (std::size_t k = c * n / chunks; k < (c + 1) * n / chunks; ++k) link(k, out);
             chunk_links_[c] = std::move(out);
         });
         std::size_t total = links.size();
@@ -773,20 +811,24 @@ class HemicubeProvider final : public FormFactorProvider {
     void link_missed_polygons(const Shooter& shooter, const gpu::HemicubeVisibility& vis,
                               std::vector<Link>& links) {
         const dvec3& eye = shooter.geometry.centre;
-        for (std::uint32_t p = 0; p < scene_->polygons.size(); ++p) {
-            if (polygon_seen_[p] == stamp_ || p == shooter.address.polygon) continue;
-            if (hidden_ && std::binary_search(hidden_->begin(), hidden_->end(), p)) continue;
-            const Polygon& poly = scene_->polygons[p];
-            const dvec3& centre = centre_[p];
-            if (glm::dot(poly.normal, centre - eye) >= 0) continue; // faces away from the shooter
-            if (!vis.visible_in_depth_map(centre, p)) continue;
-            const double f = analytic_at(shooter, centre, poly.normal);
-            if (f <= 0) continue;
-            Link l;
-            l.receiver = {p, 0, 0};
-            l.ff = l.ff_analytic = float(f);
-            links.push_back(l);
-        }
+        link_in_chunks(scene_->polygons.size(), kChunkPolygons, 0, links,
+                       [&](std::size_t k, std::vector<Link>& out) {
+                           const auto p = std::uint32_t(k);
+                           if (polygon_seen_[p] == stamp_ || p == shooter.address.polygon) return;
+                           if (hidden_ && std::binary_search(hidden_->begin(), hidden_->end(), p))
+                               return;
+                           const Polygon& poly = scene_->polygons[p];
+                           const dvec3& centre = centre_[p];
+                           if (glm::dot(poly.normal, centre - eye) >= 0)
+                               return; // faces away from the shooter
+                           if (!vis.visible_in_depth_map(centre, p)) return;
+                           const double f = analytic_at(shooter, centre, poly.normal);
+                           if (f <= 0) return;
+                           Link l;
+                           l.receiver = {p, 0, 0};
+                           l.ff = l.ff_analytic = float(f);
+                           out.push_back(l);
+                       });
     }
 
     // Adds the link of node a: analytic F(j->S), and the pixel sum as A_S F(S->j).
@@ -901,8 +943,15 @@ class HemicubeProvider final : public FormFactorProvider {
     std::vector<std::uint32_t> partial_; ///< per node, stamp_: a silhouette crosses it
     std::array<std::vector<std::size_t>, 5> edge_pixels_; ///< mark_partial: per face
     std::vector<float> ids_;                              ///< pixels_'s IDs (fill_cracks)
-    std::array<std::vector<float>, 2> sphere_ids_;        ///< the same for a point's two sides
-    std::vector<dvec3> centre_;                           ///< per polygon, its level-0 centre
+    struct Receiver {
+        dvec3 centre{0.0};
+        double area = 0;
+        float share = 0; ///< of the cluster's intensity (ClusterShooter::share_in_front)
+    };
+    std::vector<Receiver> receivers_; ///< shoot_cluster(): per link
+    std::vector<float> flux_;         ///< shoot_sphere(): per pixel, its flux (-1: no front)
+    std::array<std::vector<float>, 2> sphere_ids_; ///< the same for a point's two sides
+    std::vector<dvec3> centre_;                    ///< per polygon, its level-0 centre
     std::vector<double> radius_; ///< per polygon, its farthest corner from centre_ [unit]
     const std::vector<std::uint32_t>* hidden_ = nullptr; ///< during shoot_cluster(): members
     double near_fraction_ = 0;
@@ -916,6 +965,7 @@ class HemicubeProvider final : public FormFactorProvider {
     double backface_ = 0;
     double shooter_radius_ = 0; ///< a patch shot's: its farthest corner from its centre [unit]
     double plane_eps_ = 0;      ///< in a plane: within this distance of it [scene units]
+    double diagonal_ = 0;       ///< the scene's bounding box diagonal [scene units]
     const gpu::HemicubeLayout* last_layout_ = nullptr; ///< of the last shoot() (in layouts_)
     Shooter last_shooter_;
     int last_width_ = 0, last_height_ = 0; ///< layout of pixels_ (last_hemicube())

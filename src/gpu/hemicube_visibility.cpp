@@ -44,7 +44,7 @@ bool within(const Polygon& q, const dvec3& p, double tol) {
 long shown_polygon(const float* rgba, std::size_t at) {
     const float id = rgba[4 * at + 2];
     if (id > -0.5f && id < 0.5f) return -1;
-    return long(std::lround(std::abs(id))) - 1;
+    return long(std::abs(id) + 0.5f) - 1; // (IDs are whole numbers: no lround needed)
 }
 
 // Direction (not normalised) through the centre of pixel (i, j) of face f.
