@@ -273,17 +273,16 @@ class HemicubeProvider final : public FormFactorProvider {
         const double eps = 1e-6 * std::max(c.radius, 1e-300);
         // Each link's receiver and share on threads (in chunks), the sums after, in order.
         receivers_.resize(links.size());
-        const std::size_t chunks = std::max<std::size_t>(1, links.size() / kChunkNodes);
-        parallel_for(chunks, 0, [&](std::size_t k) {
-            for (std::size_t i = k * links.size() / chunks; i < (k + 1) * links.size() / chunks;
-                 ++i) {
-                const PatchAddress& a = links[i].receiver;
-                const Polygon& poly = scene_->polygons[a.polygon];
-                const PatchGeometry g = patch_geometry(poly, a.level, a.index);
-                receivers_[i] = {g.centre, g.area,
-                                 float(c.share_in_front(g.centre, poly.normal, eps))};
-            }
-        });
+        for_chunks(links.size(), chunk_count(links.size(), kChunkNodes, 0), 0,
+                   [&](std::size_t, std::size_t begin, std::size_t end) {
+                       for (std::size_t i = begin; i < end; ++i) {
+                           const PatchAddress& a = links[i].receiver;
+                           const Polygon& poly = scene_->polygons[a.polygon];
+                           const PatchGeometry g = patch_geometry(poly, a.level, a.index);
+                           receivers_[i] = {g.centre, g.area,
+                                            float(c.share_in_front(g.centre, poly.normal, eps))};
+                       }
+                   });
         std::size_t kept = 0;
         for (std::size_t i = 0; i < links.size(); ++i) {
             Link l = links[i];
@@ -758,20 +757,34 @@ class HemicubeProvider final : public FormFactorProvider {
                        });
     }
 
+    // How many chunks of about `chunk` items n items are cut into: one where n is under a
+    // chunk or one thread runs them.
+    static std::size_t chunk_count(std::size_t n, std::size_t chunk, int threads) {
+        return threads == 1 || n < chunk ? 1 : n / chunk;
+    }
+
+    // Calls body(c, begin, end) for each of `chunks` equal chunks [begin, end) of [0, n), on
+    // `threads` (the chunks, and so any sums kept per chunk, do not depend on the threads).
+    template <class Body>
+    static void for_chunks(std::size_t n, std::size_t chunks, int threads, Body&& body) {
+        parallel_for(chunks, threads,
+                     [&](std::size_t c) { body(c, c * n / chunks, (c + 1) * n / chunks); });
+    }
+
     // Calls link(k, out) for k in [0, n), in chunks of about `chunk` on `threads`, each chunk
     // into its own list, the lists appended to `links` in order: the links come in the order
     // one thread would give them.
     template <class Link_k>
     void link_in_chunks(std::size_t n, std::size_t chunk, int threads, std::vector<Link>& links,
                         Link_k&& link) {
-        const std::size_t chunks = threads == 1 || n < chunk ? 1 : n / chunk;
+        const std::size_t chunks = chunk_count(n, chunk, threads);
         chunk_links_.resize(std::max(chunk_links_.size(), chunks));
-        parallel_for(chunks, threads, [&](std::size_t c) {
+        for_chunks(n, chunks, threads, [&](std::size_t c, std::size_t begin, std::size_t end) {
             // Filled on this thread's stack (chunk_links_'s vectors share cache lines: each
             // push_back would move the line between the cores), its memory kept for later.
             std::vector<Link> out = std::move(chunk_links_[c]);
             out.clear();
-            for (std::size_t k = c * n / chunks; k < (c + 1) * n / chunks; ++k) link(k, out);
+            for (std::size_t k = begin; k < end; ++k) link(k, out);
             chunk_links_[c] = std::move(out);
         });
         std::size_t total = links.size();

@@ -37,23 +37,35 @@ dvec3 polygon_point(const Polygon& p, double u, double v) {
            (1 - u) * v * p.v[3];
 }
 
+namespace {
+
+// The corners of sub-triangle `index` of level `level` of triangle p, counter-clockwise like p
+// (patch_geometry() and patch_centre() take them from here).
+void tri_corners(const Polygon& p, std::uint32_t level, std::uint32_t index, dvec3* corners) {
+    const std::uint32_t n = 1u << level;
+    const double h = 1.0 / n;
+    const TriCell c = tri_cell(n, index);
+    const double u0 = c.i * h, v0 = c.j * h;
+    if (!c.inverted) {
+        corners[0] = polygon_point(p, u0, v0);
+        corners[1] = polygon_point(p, u0 + h, v0);
+        corners[2] = polygon_point(p, u0, v0 + h);
+    } else {
+        corners[0] = polygon_point(p, u0 + h, v0 + h);
+        corners[1] = polygon_point(p, u0, v0 + h);
+        corners[2] = polygon_point(p, u0 + h, v0);
+    }
+}
+
+} // namespace
+
 PatchGeometry patch_geometry(const Polygon& p, std::uint32_t level, std::uint32_t index) {
     const std::uint32_t n = 1u << level;
     const double h = 1.0 / n;
     PatchGeometry g;
     if (p.is_triangle()) {
-        const TriCell c = tri_cell(n, index);
-        const double u0 = c.i * h, v0 = c.j * h;
         g.count = 3;
-        if (!c.inverted) {
-            g.corners[0] = polygon_point(p, u0, v0);
-            g.corners[1] = polygon_point(p, u0 + h, v0);
-            g.corners[2] = polygon_point(p, u0, v0 + h);
-        } else {
-            g.corners[0] = polygon_point(p, u0 + h, v0 + h);
-            g.corners[1] = polygon_point(p, u0, v0 + h);
-            g.corners[2] = polygon_point(p, u0 + h, v0);
-        }
+        tri_corners(p, level, index, g.corners.data());
         g.centre = (g.corners[0] + g.corners[1] + g.corners[2]) / 3.0;
         g.area = p.area / double(n) / double(n);
         return g;
@@ -79,15 +91,9 @@ dvec3 patch_centre(const Polygon& p, std::uint32_t level, std::uint32_t index) {
     const std::uint32_t n = 1u << level;
     const double h = 1.0 / n;
     if (p.is_triangle()) {
-        const TriCell c = tri_cell(n, index);
-        const double u0 = c.i * h, v0 = c.j * h;
-        if (!c.inverted)
-            return (polygon_point(p, u0, v0) + polygon_point(p, u0 + h, v0) +
-                    polygon_point(p, u0, v0 + h)) /
-                   3.0;
-        return (polygon_point(p, u0 + h, v0 + h) + polygon_point(p, u0, v0 + h) +
-                polygon_point(p, u0 + h, v0)) /
-               3.0;
+        dvec3 c[3];
+        tri_corners(p, level, index, c);
+        return (c[0] + c[1] + c[2]) / 3.0;
     }
     const std::uint32_t x = index % n, y = index / n;
     return polygon_point(p, x * h + 0.5 * h, y * h + 0.5 * h);
