@@ -90,7 +90,7 @@ def main(argv):
             print(f"  {g:16s} n={len(v):4d}  median signed {100 * pct(v, 0.5):+6.2f} %  "
                   f"median |e| {100 * pct([abs(x) for x in v], 0.5):5.2f} %  max |e| {100 * max(abs(x) for x in v):6.2f} %")
     if "--bins" in argv:
-        print(f"  by REF / REF's median ({median:.6g}); {leaking} of the {dark} dark points leak")
+        print(f"  by REF / REF's lit median ({median:.6g}); {leaking} of the {dark} dark points leak")
         for (lo, hi), v in zip(BINS, bins):
             if v:
                 e = [x[0] for x in v]

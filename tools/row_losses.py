@@ -22,6 +22,11 @@ def kind(shot):
     return "luminaire" if shot.get("luminaire", -1) >= 0 else "patch"
 
 
+def lost(shot):
+    """The light a row under 1 lost, in the units of shooter_power."""
+    return shot["shooter_power"] * max(0.0, 1 - shot["row_sum"])
+
+
 def main(argv):
     if len(argv) < 2 or argv[1] in ("-h", "--help"):
         print(__doc__.strip())
@@ -51,12 +56,12 @@ def main(argv):
         if not group:
             continue
         power = sum(s["shooter_power"] for s in group)
-        lost = sum(s["shooter_power"] * max(0.0, 1 - s["row_sum"]) for s in group)
+        lost_here = sum(lost(s) for s in group)
         made = sum(s["shooter_power"] * max(0.0, s["row_sum"] - 1) for s in group)
         over = sum(s["row_sum"] > 1.001 for s in group)
         rows = sorted(s["row_sum"] for s in group)
         print(f"  {k:9s} {len(group):6d} shots  power {100 * power / total:5.1f} %  "
-              f"lost {100 * lost / total:5.2f} %  over 1 {100 * made / total:5.2f} %  "
+              f"lost {100 * lost_here / total:5.2f} %  over 1 {100 * made / total:5.2f} %  "
               f"(of all shot power)  rows > 1.001: {over}  row p10 {rows[len(rows) // 10]:.3f} "
               f"median {rows[len(rows) // 2]:.3f} worst {rows[-1]:.3f}")
         for s in group:
@@ -65,10 +70,10 @@ def main(argv):
                     else f"luminaire {s['luminaire']}")
             entry = by_shooter.setdefault(name, [0, 0.0, []])
             entry[0] += 1
-            entry[1] += s["shooter_power"] * max(0.0, 1 - s["row_sum"])
+            entry[1] += lost(s)
             entry[2].append(s["row_sum"])
-    for name, (n, lost, rows) in sorted(by_shooter.items(), key=lambda kv: -kv[1][1])[:worst]:
-        print(f"  {name}: {n} shots, lost {100 * lost / total:.2f} % of all shot power, rows "
+    for name, (n, light, rows) in sorted(by_shooter.items(), key=lambda kv: -kv[1][1])[:worst]:
+        print(f"  {name}: {n} shots, lost {100 * light / total:.2f} % of all shot power, rows "
               + " ".join(f"{r:.3f}" for r in rows[:8]) + (" ..." if len(rows) > 8 else ""))
     return 0
 
