@@ -2,9 +2,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "gpu/acos_table.h"
 #include "gpu/hemicube.h"
+#include "gpu/pixel_runs.h"
 
 using namespace hemirad;
 
@@ -58,4 +62,44 @@ TEST(AcosTable, ErrorIsSmallAndRelativelySmallForSmallAngles) {
     }
     EXPECT_LT(worst, 1e-5) << "absolute error [rad] over [0, pi]";
     EXPECT_LT(worst_small, 1e-5) << "relative error for angles under 3 degrees";
+}
+
+// The runs of equal patch IDs (gpu::for_each_pixel_run) are those a plain scan finds: one
+// call per maximal run, in order, covering every pixel once, across the blocks of 64 pixels
+// its masks work in (runs that end at a block's edge, span blocks, or fill one).
+TEST(PixelRuns, MatchAPlainScan) {
+    for (std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(63), std::size_t(64),
+                          std::size_t(65), std::size_t(200), std::size_t(1000)}) {
+        std::vector<float> rgba(4 * n);
+        std::uint64_t state = 12345 + n;
+        float channels[3] = {0, 0, 1};
+        for (std::size_t i = 0; i < n; ++i) {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            const unsigned r = unsigned(state >> 60); // 0..15
+            // Often one channel alone changes (each must be compared); within every third
+            // stretch of 100 pixels none does (runs across blocks).
+            if (r < 6 && (i / 100) % 3 != 1) channels[r % 3] += 1;
+            for (int c = 0; c < 3; ++c) rgba[4 * i + std::size_t(c)] = channels[c];
+            rgba[4 * i + 3] = float(i); // alpha differs from pixel to pixel: not compared
+        }
+        std::vector<std::pair<std::size_t, std::size_t>> expected, found;
+        for (std::size_t i = 0; i < n;) {
+            std::size_t j = i + 1;
+            while (j < n && rgba[4 * j] == rgba[4 * i] && rgba[4 * j + 1] == rgba[4 * i + 1] &&
+                   rgba[4 * j + 2] == rgba[4 * i + 2])
+                ++j;
+            expected.emplace_back(i, j - i);
+            i = j;
+        }
+        gpu::for_each_pixel_run(rgba.data(), n, [&](std::size_t first, std::size_t count) {
+            found.emplace_back(first, count);
+        });
+        EXPECT_EQ(found, expected) << "n " << n;
+        if (n >= 200) { // the case is one: some runs cross a block's edge
+            bool crosses = false;
+            for (const auto& [first, count] : expected)
+                crosses |= first / 64 != (first + count - 1) / 64;
+            EXPECT_TRUE(crosses) << "n " << n;
+        }
+    }
 }

@@ -20,6 +20,7 @@
 #include "core/timer.h"
 #include "gpu/hemicube.h"
 #include "gpu/hemicube_visibility.h"
+#include "gpu/pixel_runs.h"
 #include "hemirad/error.h"
 #include "hemirad/gl/context.h"
 #include "hemirad/provider.h"
@@ -379,15 +380,14 @@ class HemicubeProvider final : public FormFactorProvider {
                             flux_[at] = float(flux);
                     }
             });
-            for (int f = 0; f < 5; ++f) {
-                back += face_back[std::size_t(f)];
-                const gpu::HemicubeLayout::Face& face = layout.faces[f];
-                for (int j = 0; j < face.h; ++j)
-                    for (int i = 0; i < face.w; ++i) {
-                        const std::size_t at = std::size_t(face.y + j) * layout.width + face.x + i;
-                        if (flux_[at] >= 0) scan_pixel(px.data(), at, flux_[at]);
-                    }
-            }
+            for (int f = 0; f < 5; ++f) back += face_back[std::size_t(f)];
+            const auto add_run = [&](std::size_t first, std::size_t count) {
+                if (px[4 * first + 2] < 0.5f) return; // nothing, or the back of a polygon
+                float weight = 0;
+                for (std::size_t i = first; i < first + count; ++i) weight += flux_[i];
+                scan_pixels(px.data(), first, weight, std::uint32_t(count));
+            };
+            gpu::for_each_pixel_run(px.data(), flux_.size(), add_run);
             t_reduce += since(t0);
         }
         auto t0 = Clock::now();
@@ -603,30 +603,17 @@ class HemicubeProvider final : public FormFactorProvider {
         const std::size_t n = std::size_t(layout.width) * layout.height;
         // Neighbouring pixels mostly show the same node: a run of them is added to it at once.
         double backface = 0;
-        std::size_t run = n; // the run's first pixel, n: none
-        float run_weight = 0;
-        std::uint32_t run_count = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            const float* px = &rgba[4 * i];
-            const float b = px[2];
-            if (b < 0.5f) {
-                if (b < -0.5f) backface += layout.delta_ff[i];
-                continue;
+        gpu::for_each_pixel_run(rgba, n, [&](std::size_t first, std::size_t count) {
+            const float b = rgba[4 * first + 2];
+            if (b > -0.5f && b < 0.5f) return; // nothing
+            if (b < 0) {                       // the back of a polygon
+                for (std::size_t i = first; i < first + count; ++i) backface += layout.delta_ff[i];
+                return;
             }
-            if (run < n) {
-                const float* r = &rgba[4 * run];
-                if (r[2] == b && r[1] == px[1] && r[0] == px[0]) {
-                    run_weight += layout.delta_ff[i];
-                    ++run_count;
-                    continue;
-                }
-                scan_pixels(rgba, run, run_weight, run_count);
-            }
-            run = i;
-            run_weight = layout.delta_ff[i];
-            run_count = 1;
-        }
-        if (run < n) scan_pixels(rgba, run, run_weight, run_count);
+            float weight = 0;
+            for (std::size_t i = first; i < first + count; ++i) weight += layout.delta_ff[i];
+            scan_pixels(rgba, first, weight, std::uint32_t(count));
+        });
         backface_ = backface;
         const gpu::HemicubeVisibility vis(*scene_, layout, frame, pixels_.data(),
                                           shooter.geometry.centre, ids_.data());
@@ -710,13 +697,9 @@ class HemicubeProvider final : public FormFactorProvider {
         return seen_[id] == stamp_ ? pixel_count_[id] : 0;
     }
 
-    // Pixel `i` of `rgba` shows a front (B > 0): marks its node seen (taking its analytic
-    // value from alpha the first time) and adds `weight` to the node's pixel sum.
-    void scan_pixel(const float* rgba, std::size_t i, float weight) {
-        scan_pixels(rgba, i, weight, 1);
-    }
-
-    // The same for `count` pixels showing pixel i's node, of summed weight `weight`.
+    // `count` pixels from pixel `i` of `rgba` show the front (B > 0) of one node: marks it seen
+    // (taking its analytic value from alpha the first time) and adds `weight` (their summed
+    // weight) to its pixel sum and `count` to its pixels.
     void scan_pixels(const float* rgba, std::size_t i, float weight, std::uint32_t count) {
         const float* px = &rgba[4 * i];
         const auto p = std::uint32_t(px[2]) - 1;
