@@ -31,6 +31,7 @@ layout(location = 6) uniform int shooter_count;    // 3 or 4
 layout(location = 7) uniform float lod_bias;
 layout(location = 8) uniform int angle_method; // 0: lookup table, 1: GLSL acos, 2: GLSL atan
 layout(location = 9) uniform int shooter_polygon;
+layout(location = 10) uniform int polygons_only; // 1: B alone (a view probe), no texture lookup
 
 const float PI = 3.14159265358979;
 
@@ -91,6 +92,10 @@ void main() {
         // it, so that a shooter whose centre is enclosed (under a block, behind a light) can
         // be detected, and the occluder's distance known.
         out_id = vec4(0.0, 0.0, -float(v_polygon + 1), 0.0);
+        return;
+    }
+    if (polygons_only != 0) {
+        out_id = vec4(0.0, 0.0, float(v_polygon + 1), 0.0);
         return;
     }
     PolygonData poly = polygons[v_polygon];

@@ -317,6 +317,51 @@ TEST(PatchIds, LodBiasLinksCoarser) {
     EXPECT_NEAR(l0 - l1, 1.0, 0.25) << l0 << " " << l1;
 }
 
+// --- the view probe's image: polygon IDs alone -------------------------------------------
+// render_polygon_ids() skips the patch-ID texture and the form factor: its B channel must be
+// render()'s, pixel for pixel (fronts, backs and nothing), with R, G and A left 0. The
+// Cornell box at 64 and 256 from three of its polygons, and from inside the last one's block
+// looking in (the block's other faces from behind).
+TEST(PatchIds, PolygonIdsAloneMatchTheFullRender) {
+    context();
+    const Scene scene = make_builtin("cornell");
+    const Discretisation disc = discretise(scene, HierarchyOptions{});
+    gpu::HemicubeRenderer r(scene, disc, 256);
+    const auto last = std::uint32_t(scene.polygons.size() - 1);
+    std::vector<Shooter> shooters;
+    for (std::uint32_t p : {0u, 5u, last}) shooters.push_back(whole_polygon_shooter(scene, p));
+    Shooter inside = shooters.back();
+    const dvec3 step = -0.01 * inside.normal;
+    inside.geometry.centre += step;
+    for (dvec3& c : inside.geometry.corners) c += step;
+    inside.normal = -inside.normal;
+    shooters.push_back(inside);
+    long fronts = 0, backs = 0, empty = 0;
+    for (int res : {64, 256})
+        for (std::size_t k = 0; k < shooters.size(); ++k) {
+            const gpu::HemicubeLayout L = gpu::make_hemicube_layout(res);
+            std::vector<float> full, ids;
+            r.render(shooters[k], L, 0.0, 0);
+            r.read_back(L, full);
+            r.render_polygon_ids(shooters[k], L);
+            r.read_back(L, ids);
+            ASSERT_EQ(full.size(), ids.size());
+            long differ = 0, nonzero = 0;
+            for (std::size_t i = 0; i < full.size(); i += 4) {
+                const float b = full[i + 2];
+                fronts += b > 0.5f, backs += b<-0.5f, empty += b> - 0.5f && b < 0.5f;
+                differ += ids[i + 2] != b;
+                nonzero += ids[i] != 0.f || ids[i + 1] != 0.f || ids[i + 3] != 0.f;
+            }
+            EXPECT_EQ(differ, 0) << "res " << res << " shooter " << k;
+            EXPECT_EQ(nonzero, 0) << "res " << res << " shooter " << k;
+        }
+    // Every kind of pixel was compared.
+    EXPECT_GT(fronts, 1000);
+    EXPECT_GT(backs, 1000);
+    EXPECT_GT(empty, 1000);
+}
+
 // --- partial occlusion: hybrid links the seen parts of a node -----------------------------
 // A square blocker, turned 30 degrees, halfway between two parallel plates 0.93 apart; one
 // shot from a small ceiling patch (1/32 wide, so that the hemicube's point of view stands for

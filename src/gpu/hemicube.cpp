@@ -247,6 +247,15 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
 
 void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layout, double lod_bias,
                               int angle_method) {
+    draw(shooter, layout, lod_bias, angle_method, false);
+}
+
+void HemicubeRenderer::render_polygon_ids(const Shooter& shooter, const HemicubeLayout& layout) {
+    draw(shooter, layout, 0.0, 0, true);
+}
+
+void HemicubeRenderer::draw(const Shooter& shooter, const HemicubeLayout& layout, double lod_bias,
+                            int angle_method, bool polygons_only) {
     HEMIRAD_CHECK_LE(layout.res, max_res_);
     const HemicubeFrame frame = hemicube_frame(shooter);
     const dvec3 N = frame.N;
@@ -288,6 +297,7 @@ void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layo
     glUniform1f(7, float(lod_bias));
     glUniform1i(8, angle_method);
     glUniform1i(9, int(shooter.address.polygon));
+    glUniform1i(10, polygons_only ? 1 : 0);
     glUniform3f(1, float(eye.x), float(eye.y), float(eye.z));
 
     drawn_ = ranges_ = 0;

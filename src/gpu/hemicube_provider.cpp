@@ -165,10 +165,8 @@ class HemicubeProvider final : public FormFactorProvider {
         if (resolution_for(shooter) <= kProbeResolution) return false;
         const gpu::HemicubeLayout& layout = layout_of(kProbeResolution);
         const auto t0 = Clock::now();
-        // Without corners the fragment shader computes no form factor: IDs only.
-        Shooter ids_only = shooter;
-        ids_only.geometry.count = 0;
-        renderer_->render(ids_only, layout, options_.lod_bias, 0);
+        // The measures read the polygon IDs alone.
+        renderer_->render_polygon_ids(shooter, layout);
         renderer_->read_back(layout, probe_pixels_);
         double backface = 0;
         const std::size_t n = std::size_t(layout.width) * layout.height;
