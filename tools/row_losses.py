@@ -27,6 +27,11 @@ def lost(shot):
     return shot["shooter_power"] * max(0.0, 1 - shot["row_sum"])
 
 
+def made(shot):
+    """The light a row over 1 created, in the units of shooter_power."""
+    return shot["shooter_power"] * max(0.0, shot["row_sum"] - 1)
+
+
 def main(argv):
     if len(argv) < 2 or argv[1] in ("-h", "--help"):
         print(__doc__.strip())
@@ -57,11 +62,11 @@ def main(argv):
             continue
         power = sum(s["shooter_power"] for s in group)
         lost_here = sum(lost(s) for s in group)
-        made = sum(s["shooter_power"] * max(0.0, s["row_sum"] - 1) for s in group)
+        made_here = sum(made(s) for s in group)
         over = sum(s["row_sum"] > 1.001 for s in group)
         rows = sorted(s["row_sum"] for s in group)
         print(f"  {k:9s} {len(group):6d} shots  power {100 * power / total:5.1f} %  "
-              f"lost {100 * lost_here / total:5.2f} %  over 1 {100 * made / total:5.2f} %  "
+              f"lost {100 * lost_here / total:5.2f} %  over 1 {100 * made_here / total:5.2f} %  "
               f"(of all shot power)  rows > 1.001: {over}  row p10 {rows[len(rows) // 10]:.3f} "
               f"median {rows[len(rows) // 2]:.3f} worst {rows[-1]:.3f}")
         for s in group:

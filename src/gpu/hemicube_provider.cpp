@@ -381,9 +381,7 @@ class HemicubeProvider final : public FormFactorProvider {
             for (int f = 0; f < 5; ++f) back += face_back[std::size_t(f)];
             const auto add_run = [&](std::size_t first, std::size_t count) {
                 if (px[4 * first + 2] < 0.5f) return; // nothing, or the back of a polygon
-                float weight = 0;
-                for (std::size_t i = first; i < first + count; ++i) weight += flux_[i];
-                scan_pixels(px.data(), first, weight, std::uint32_t(count));
+                scan_pixels(px.data(), first, run_sum(flux_, first, count), std::uint32_t(count));
             };
             gpu::for_each_pixel_run(px.data(), flux_.size(), add_run);
             t_reduce += since(t0);
@@ -608,9 +606,7 @@ class HemicubeProvider final : public FormFactorProvider {
                 for (std::size_t i = first; i < first + count; ++i) backface += layout.delta_ff[i];
                 return;
             }
-            float weight = 0;
-            for (std::size_t i = first; i < first + count; ++i) weight += layout.delta_ff[i];
-            scan_pixels(rgba, first, weight, std::uint32_t(count));
+            scan_pixels(rgba, first, run_sum(layout.delta_ff, first, count), std::uint32_t(count));
         });
         backface_ = backface;
         const gpu::HemicubeVisibility vis(*scene_, layout, frame, pixels_.data(),
@@ -686,6 +682,14 @@ class HemicubeProvider final : public FormFactorProvider {
             l.ff = analytic * float(seen) / 5.f;
         }
         if (l.ff > 0) links.push_back(l);
+    }
+
+    // The sum of a run's per-pixel weights, `count` from pixel `first`, in float (the order of
+    // the sums the pixel-by-pixel scan had).
+    static float run_sum(const std::vector<float>& weights, std::size_t first, std::size_t count) {
+        float sum = 0;
+        for (std::size_t i = first; i < first + count; ++i) sum += weights[i];
+        return sum;
     }
 
     // The pixels that showed node a in this shot (0 for a node no pixel showed: its count is
