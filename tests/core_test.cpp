@@ -218,6 +218,45 @@ TEST(ParallelFor, HandsAWorkersExceptionToTheCaller) {
                  std::logic_error);
 }
 
+// The helpers are kept between loops (core/loop_threads.h): a helper's thread-local count of
+// the calls it made goes on from loop to loop. A thread started for one loop makes at most that
+// loop's 64 calls; kept threads (at most the 7 that earlier tests asked for) share 40 loops'.
+TEST(ParallelFor, KeepsItsThreadsBetweenLoops) {
+    const std::thread::id caller = std::this_thread::get_id();
+    std::atomic<int> most{0};
+    for (int loop = 0; loop < 40; ++loop)
+        parallel_for(64, 2, [&](std::size_t) {
+            thread_local int calls = 0;
+            std::this_thread::sleep_for(std::chrono::microseconds(100)); // let the helper take some
+            if (std::this_thread::get_id() == caller) return;
+            const int c = ++calls;
+            for (int m = most.load(); c > m && !most.compare_exchange_weak(m, c);) {}
+        });
+    EXPECT_GT(most.load(), 64);
+}
+
+// A loop inside a loop's body, and loops on two threads at once: the kept threads serve one
+// loop at a time, the others start threads of their own; every index runs once, nothing hangs.
+TEST(ParallelFor, LoopsInsideLoopsAndSideBySide) {
+    std::vector<std::atomic<int>> seen(40 * 30);
+    parallel_for(40, 3, [&](std::size_t i) {
+        parallel_for(30, 3, [&](std::size_t j) { seen[i * 30 + j].fetch_add(1); });
+    });
+    for (std::size_t k = 0; k < seen.size(); ++k) EXPECT_EQ(seen[k].load(), 1) << k;
+    std::vector<std::atomic<int>> a(5000), b(5000);
+    std::thread other([&] {
+        for (int r = 0; r < 20; ++r)
+            parallel_for(250, 2, [&](std::size_t i) { a[i + 250 * std::size_t(r)].fetch_add(1); });
+    });
+    for (int r = 0; r < 20; ++r)
+        parallel_for(250, 2, [&](std::size_t i) { b[i + 250 * std::size_t(r)].fetch_add(1); });
+    other.join();
+    for (std::size_t k = 0; k < a.size(); ++k) {
+        EXPECT_EQ(a[k].load(), 1) << k;
+        EXPECT_EQ(b[k].load(), 1) << k;
+    }
+}
+
 // --- sRGB, projections, timer ----------------------------------------------------------------
 
 TEST(Colour, SrgbPairAreInverses) {

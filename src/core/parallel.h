@@ -7,9 +7,12 @@
 #include <atomic>
 #include <cstddef>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <thread>
 #include <vector>
+
+#include "core/loop_threads.h"
 
 namespace hemirad {
 
@@ -21,9 +24,10 @@ inline unsigned thread_count(int requested) {
 }
 
 /// Calls body(i) for every i in [0, count), on min(thread_count(threads), count) threads: the
-/// calling thread and that many less one started for the loop. Indices are taken in increasing
-/// order, one at a time, by whichever thread is free (results that must not depend on the
-/// threads are keyed by i, not by thread). Returns when every call has returned.
+/// calling thread and that many less one kept threads (core/loop_threads.h), or threads started
+/// for the loop where those are lent to another loop or this is one of them. Indices are taken in
+/// increasing order, one at a time, by whichever thread is free (results that must not depend on
+/// the threads are keyed by i, not by thread). Returns when every call has returned.
 ///
 /// If a call throws, no further index is started, the calls under way finish, and the first
 /// exception is rethrown here (later ones are dropped); nothing reaches std::terminate.
@@ -46,14 +50,29 @@ template <class Body> void parallel_for(std::size_t count, int threads, Body&& b
             }
         }
     };
-    std::vector<std::thread> pool;
-    pool.reserve(n - 1);
-    try {
-        for (std::size_t t = 1; t < n; ++t) pool.emplace_back(work);
-    } catch (...) { // no thread to be had: the threads started so far and this one do it all
+    std::size_t helpers = n - 1;
+    const std::function<void()> job = work;
+    detail::LoopThreads& kept = detail::LoopThreads::get();
+    if (helpers > 0 && kept.lend(helpers, job)) {
+        try {
+            work();
+        } catch (...) { // (work() keeps the body's exceptions: only a failed lock gets here)
+            kept.wait();
+            throw;
+        }
+        kept.wait();
+    } else if (helpers > 0) { // the kept threads are busy: threads of this loop's own
+        std::vector<std::thread> pool;
+        pool.reserve(helpers);
+        try {
+            for (std::size_t t = 0; t < helpers; ++t) pool.emplace_back(work);
+        } catch (...) { // no thread to be had: the threads started so far and this one do it all
+        }
+        work();
+        for (std::thread& t : pool) t.join();
+    } else {
+        work();
     }
-    work();
-    for (std::thread& t : pool) t.join();
     if (error) std::rethrow_exception(error);
 }
 
