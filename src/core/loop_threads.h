@@ -79,8 +79,7 @@ class LoopThreads {
             lock.unlock();
             try {
                 (*job)(); // parallel_for's work keeps a body's exception for the caller
-            } catch (...) {
-            }
+            } catch (...) {}
             lock.lock();
             if (++finished_ == wanted_) done_.notify_one();
         }
