@@ -349,7 +349,12 @@ TEST(PatchIds, PolygonIdsAloneMatchTheFullRender) {
             long differ = 0, nonzero = 0;
             for (std::size_t i = 0; i < full.size(); i += 4) {
                 const float b = full[i + 2];
-                fronts += b > 0.5f, backs += b<-0.5f, empty += b> - 0.5f && b < 0.5f;
+                if (b > 0.5f)
+                    ++fronts;
+                else if (b < -0.5f)
+                    ++backs;
+                else
+                    ++empty;
                 differ += ids[i + 2] != b;
                 nonzero += ids[i] != 0.f || ids[i + 1] != 0.f || ids[i + 3] != 0.f;
             }

@@ -51,7 +51,8 @@ template <class Body> void parallel_for(std::size_t count, int threads, Body&& b
         }
     };
     std::size_t helpers = n - 1;
-    const std::function<void()> job = work;
+    // (std::ref: the work is handed over without a copy, nor an allocation for one.)
+    const std::function<void()> job = std::ref(work);
     detail::LoopThreads& kept = detail::LoopThreads::get();
     if (helpers > 0 && kept.lend(helpers, job)) {
         try {
@@ -61,7 +62,7 @@ template <class Body> void parallel_for(std::size_t count, int threads, Body&& b
             throw;
         }
         kept.wait();
-    } else if (helpers > 0) { // the kept threads are busy: threads of this loop's own
+    } else { // one thread, or the kept ones are busy: threads of this loop's own
         std::vector<std::thread> pool;
         pool.reserve(helpers);
         try {
@@ -70,8 +71,6 @@ template <class Body> void parallel_for(std::size_t count, int threads, Body&& b
         }
         work();
         for (std::thread& t : pool) t.join();
-    } else {
-        work();
     }
     if (error) std::rethrow_exception(error);
 }
