@@ -492,9 +492,10 @@ class HemicubeProvider final : public FormFactorProvider {
     // touches the shooter's edge, where the kernel peaks logarithmically), to six levels below
     // a. On paper 000's cube at 4x4 polygons the faces' factors are within 0.06 % of the closed
     // forms, where the centres alone are 1 % off. A lamp 3 mm wide against a wall that meets
-    // its edge (the office glb's LED bars against the PC's case) reads 2.8 % low, where three
-    // levels of parts by the distance to the shooter's centre read it 47 % low
-    // (tests/hemicube_gl_test.cpp, NearReceivers).
+    // its edge (the office glb's LED bars against the PC's case) reads 2.8 % low; it read 47 %
+    // low with at most three levels of parts by the distance to the shooter's centre and the
+    // wall's polygons on no pixel at their centre values (tests/hemicube_gl_test.cpp,
+    // NearReceivers).
     static constexpr double kMeanRatio = 0.125;     ///< split while size > this x distance, ...
     static constexpr std::uint32_t kMeanLevels = 3; ///< ... for this many levels below a;
     static constexpr double kEdgeRatio = 1.0;       ///< then while size > this x distance,
@@ -567,6 +568,14 @@ class HemicubeProvider final : public FormFactorProvider {
         if (size <= kMeanRatio * r) return false;
         const dvec3 c = patch_centre(scene_->polygons[p], a.level, a.index);
         return size > kMeanRatio * distance_to_shooter(s, c);
+    }
+
+    // In hybrid, node a's analytic value (`at_centre`: the kernel at its centre; area_j: its
+    // area) as area_mean_analytic() takes it where a may be near the shooter; else at_centre.
+    float near_mean(const Shooter& s, const PatchAddress& a, double area_j, float at_centre) const {
+        if (mode_ != Mode::Hybrid || !may_be_near(s, a, area_j)) return at_centre;
+        return area_mean_analytic(
+            s, a, patch_geometry(scene_->polygons[a.polygon], a.level, a.index), at_centre);
     }
 
     // Does polygon p reach in front of a patch shooter's plane? One wholly behind it, or in it
@@ -829,8 +838,8 @@ class HemicubeProvider final : public FormFactorProvider {
     // (the oracle can coarsen within a polygon, not below one): its light would be lost,
     // and the rows of closed scenes of many small polygons would sum under 1. Every polygon
     // in front of the shooter that no pixel shows is linked whole, with its analytic value
-    // computed here, if its centre is seen in the hemicube taken as a depth map
-    // (HemicubeVisibility::visible_in_depth_map).
+    // computed here (its mean, near the shooter: near_mean), if its centre is seen in the
+    // hemicube taken as a depth map (HemicubeVisibility::visible_in_depth_map).
     void link_missed_polygons(const Shooter& shooter, const gpu::HemicubeVisibility& vis,
                               std::vector<Link>& links) {
         const dvec3& eye = shooter.geometry.centre;
@@ -845,11 +854,9 @@ class HemicubeProvider final : public FormFactorProvider {
                            if (glm::dot(poly.normal, centre - eye) >= 0)
                                return; // faces away from the shooter
                            if (!vis.visible_in_depth_map(centre, p)) return;
-                           double f = analytic_at(shooter, centre, poly.normal);
-                           const PatchAddress whole{p, 0, 0};
-                           if (mode_ == Mode::Hybrid && may_be_near(shooter, whole, poly.area))
-                               f = area_mean_analytic(shooter, whole, patch_geometry(poly, 0, 0),
-                                                      float(f));
+                           const double f =
+                               near_mean(shooter, {p, 0, 0}, poly.area,
+                                         float(analytic_at(shooter, centre, poly.normal)));
                            if (f <= 0) return;
                            Link l;
                            l.receiver = {p, 0, 0};
@@ -862,10 +869,7 @@ class HemicubeProvider final : public FormFactorProvider {
     void add_link(const Shooter& shooter, const PatchAddress& a, float analytic, double pixel_power,
                   std::vector<Link>& links) const {
         const double area_j = area(a.polygon, a.level, a.index);
-        if (mode_ == Mode::Hybrid && may_be_near(shooter, a, area_j))
-            analytic = area_mean_analytic(
-                shooter, a, patch_geometry(scene_->polygons[a.polygon], a.level, a.index),
-                analytic);
+        analytic = near_mean(shooter, a, area_j, analytic);
         Link l;
         l.receiver = a;
         l.ff_analytic = analytic;
