@@ -204,8 +204,9 @@ class HemicubeProvider final : public FormFactorProvider {
 
     // A point's light divided among polygons as its pixels divide it, and within a polygon as
     // the hybrid values do: each polygon's links are scaled so that their flux is the flux
-    // through the polygon's pixels (none: a polygon that no pixel shows, linked by
-    // link_missed_polygons, keeps its value). The pixels divide a point's flux without bias:
+    // through the polygon's pixels. A polygon that no pixel shows (linked by
+    // link_missed_polygons) gets nothing: its direction's light is in the pixels of what is
+    // shown there, and its links are dropped. The pixels divide a point's flux without bias:
     // every direction goes to what it shows; the analytic values at node centres, the
     // min(pixels, analytic) of partial nodes and the sampled visible parts do not. The
     // courtyard's three luminaire shots, against the gather's exact direct light averaged over
@@ -227,6 +228,7 @@ class HemicubeProvider final : public FormFactorProvider {
             const Totals& t = totals[l.receiver.polygon];
             if (t.linked > 0) l.ff = float(double(l.ff) * (t.pixels / t.linked));
         }
+        std::erase_if(links, [](const Link& l) { return !(l.ff > 0); });
     }
 
     bool can_shoot_clusters() const override { return true; }
