@@ -40,6 +40,26 @@ bool within(const Polygon& q, const dvec3& p, double tol) {
     return true;
 }
 
+// Can the segment from `eye` to a point within `slack` of x0 = eye + d0 (x0 and the point in
+// P's plane) cross Q's plane before its end (at a parameter in (0, 1 - 1e-6))? A cheap
+// test before fill_cracks' exact one, which moves x0 by less than slack within P's plane:
+// that moves the segment's end across Q's plane by at most slack times the sine between the
+// planes. False where no such point can: most neighbours (coplanar pieces, a wall standing
+// behind a floor pixel).
+bool may_cross_before(const Polygon& P, const Polygon& Q, const dvec3& eye, const dvec3& d0,
+                      double slack) {
+    const double c = glm::dot(P.normal, Q.normal);
+    const double reach = slack * std::sqrt(std::max(0.0, 1 - c * c));
+    const double num = glm::dot(Q.v[0] - eye, Q.normal); // the crossing is at num / den
+    const double den = glm::dot(d0, Q.normal);           // den within reach of this
+    if (std::abs(den) <= reach) return true;             // den may be 0 or change sign
+    const double limit = 1 - 1e-6;
+    // (Rounding: the exact test computes the same quantities another way; these margins
+    // are many orders of magnitude above it.)
+    if (den > 0) return num > 0 && num < limit * (den + reach) * (1 + 1e-9);
+    return num < 0 && num > limit * (den - reach) * (1 + 1e-9);
+}
+
 // The polygon pixel `at` of a hemicube image shows (front or back), or -1 for nothing.
 long shown_polygon(const float* rgba, std::size_t at) {
     const float id = rgba[4 * at + 2];
@@ -88,12 +108,13 @@ std::size_t fill_cracks(const Scene& scene, const HemicubeLayout& L, const Hemic
             const double tp = plane_hit(P, eye, u);
             if (!(tp > 0)) return;
             const double tol = 0.01 * pixel * tp * glm::length(u);
+            const Polygon& Q = scene.polygons[std::size_t(q)];
+            if (!may_cross_before(P, Q, eye, tp * u, 2 * tol)) return;
             dvec3 x = eye + tp * u;
             const dvec3 inward = P.centroid() - x;
             const double l = glm::length(inward);
             if (l > tol) x += inward * (tol / l);
             const dvec3 d = x - eye;
-            const Polygon& Q = scene.polygons[std::size_t(q)];
             const double tq = plane_hit(Q, eye, d);
             if (!(tq > 0 && tq < 1 - 1e-6) || !within(Q, eye + tq * d, tol)) return;
             for (int c = 0; c < 4; ++c) rgba[4 * a + c] = rgba[4 * b + c];
@@ -143,9 +164,10 @@ bool HemicubeVisibility::hides(int f, int i, int j, std::uint32_t p) const {
     const dvec3 u = ray(f, i, j);
     const Polygon& P = scene_->polygons[p];
     const double tp = plane_hit(P, eye_, u);
-    if (!(tp > 0) || !inside(P, eye_ + tp * u)) return false; // p does not go on there
+    if (!(tp > 0)) return false;
     const double tq = plane_hit(scene_->polygons[std::size_t(q)], eye_, u);
-    return tq > 0 && tq < tp * (1 - 1e-6);
+    if (!(tq > 0 && tq < tp * (1 - 1e-6))) return false; // q is not in front of p's plane
+    return inside(P, eye_ + tp * u);                     // does p go on there?
 }
 
 bool HemicubeVisibility::visible(const dvec3& x, std::uint32_t own) const {
