@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <deque>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <unordered_map>
@@ -38,9 +39,9 @@ enum class Mode { Hemicube, Analytic, Hybrid };
 /// A node seen on at least this many pixels of a point shot's hemicubes is near the point:
 /// it takes its pixels' flux, not the kernel at its centre (add_link).
 constexpr std::uint32_t kNearPixels = 16;
-/// link_touched() runs on threads in chunks of this many seen nodes (fewer: one thread).
+/// touched_job() links the seen nodes in chunks of this many (fewer: one chunk).
 constexpr std::size_t kChunkNodes = 2048;
-/// link_missed_polygons() runs on threads in chunks of this many polygons.
+/// missed_polygons_job() links the polygons no pixel shows in chunks of this many.
 constexpr std::size_t kChunkPolygons = 8192;
 
 /// The polygon of a luminaire's stand-in shooter: none (the renderer skips no polygon).
@@ -205,7 +206,7 @@ class HemicubeProvider final : public FormFactorProvider {
     // A point's light divided among polygons as its pixels divide it, and within a polygon as
     // the hybrid values do: each polygon's links are scaled so that their flux is the flux
     // through the polygon's pixels. A polygon that no pixel shows (linked by
-    // link_missed_polygons) gets nothing: its direction's light is in the pixels of what is
+    // missed_polygons_job) gets nothing: its direction's light is in the pixels of what is
     // shown there, and its links are dropped. The pixels divide a point's flux without bias:
     // every direction goes to what it shows; the analytic values at node centres, the
     // min(pixels, analytic) of partial nodes and the sampled visible parts do not. The
@@ -438,14 +439,13 @@ class HemicubeProvider final : public FormFactorProvider {
                            s.centre, sphere_ids_[k].data());
             vis_[k] = &*vis[k];
             if (mode_ == Mode::Hybrid)
-                mark_partial(*vis[k], buffers[k]->data(), gpu::face_threads(layout));
+                mark_partial(*vis[k], buffers[k]->data(), gpu::face_threads(layout), [] {});
         }
         sphere_centre_ = s.centre;
         sphere_axis_ = s.axis;
-        link_touched(sides[0], 1.0, gpu::face_threads(layout), links);
-        if (mode_ != Mode::Hemicube)
-            for (int k = s.front_only ? 1 : 0; k < 2; ++k)
-                link_missed_polygons(sides[k], *vis[k], links);
+        link_in_chunks(links, {touched_job(sides[0], 1.0, gpu::face_threads(layout))});
+        for (int k = s.front_only ? 1 : 0; k < 2; ++k)
+            link_in_chunks(links, {missed_polygons_job(sides[k], *vis[k])});
         vis_[0] = vis_[1] = nullptr;
         sphere_axis_ = dvec3(0.0);
         t_reduce += since(t0);
@@ -551,7 +551,7 @@ class HemicubeProvider final : public FormFactorProvider {
                      std::uint32_t index, const dvec3& centre, double size, std::uint32_t levels,
                      std::uint32_t depth, double value) const {
         const double ratio = depth < kMeanLevels ? kMeanRatio : kEdgeRatio;
-        if (depth >= levels || size <= ratio * distance_to_shooter(s, centre))
+        if (depth >= levels || small_for_distance(s, centre, size, ratio))
             return value >= 0 ? value : analytic_at(s, centre, poly.normal);
         double total = 0;
         for (std::uint32_t c : patch_children(poly.is_triangle(), level, index))
@@ -600,7 +600,16 @@ class HemicubeProvider final : public FormFactorProvider {
         const double r = glm::length(centre_[p] - s.geometry.centre) - radius_[p] - shooter_radius_;
         if (size <= kMeanRatio * r) return false;
         const dvec3 c = patch_centre(scene_->polygons[p], a.level, a.index);
-        return size > kMeanRatio * distance_to_shooter(s, c);
+        return !small_for_distance(s, c, size, kMeanRatio);
+    }
+
+    // Is size <= ratio times x's distance to a patch shooter's polygon? Tested first against
+    // the distance to its centre less its reach (every point of it lies within the reach of
+    // the centre: a lower bound that takes one square root), where most receivers are far.
+    bool small_for_distance(const Shooter& s, const dvec3& x, double size, double ratio) const {
+        const double at_least = glm::length(x - s.geometry.centre) - shooter_radius_;
+        if (size <= ratio * at_least * (1 - 1e-12)) return true;
+        return size <= ratio * distance_to_shooter(s, x);
     }
 
     // In hybrid, node a's analytic value (`at_centre`: the kernel at its centre; area_j: its
@@ -625,7 +634,7 @@ class HemicubeProvider final : public FormFactorProvider {
         return base_[p] + level_offset(int(level)) + index;
     }
 
-    // Cached on first use; link_touched's threads may both fill an entry, with one value.
+    // Cached on first use; link_in_chunks's threads may both fill an entry, with one value.
     float area(std::uint32_t p, std::uint32_t level, std::uint32_t index) const {
         std::atomic<float>& cached = area_[node_id(p, level, index)];
         float a = cached.load(std::memory_order_relaxed);
@@ -666,32 +675,47 @@ class HemicubeProvider final : public FormFactorProvider {
         const std::size_t n = std::size_t(layout.width) * layout.height;
         // Neighbouring pixels mostly show the same node: a run of them is added to it at once.
         double backface = 0;
-        gpu::for_each_pixel_run(rgba, n, [&](std::size_t first, std::size_t count) {
-            const float b = rgba[4 * first + 2];
-            if (b > -0.5f && b < 0.5f) return; // nothing
-            if (b < 0) {                       // the back of a polygon
-                for (std::size_t i = first; i < first + count; ++i) backface += layout.delta_ff[i];
-                return;
-            }
-            scan_pixels(rgba, first, run_sum(layout.delta_ff, first, count), std::uint32_t(count));
-        });
-        backface_ = backface;
+        const auto add_runs = [&] {
+            gpu::for_each_pixel_run(rgba, n, [&](std::size_t first, std::size_t count) {
+                const float b = rgba[4 * first + 2];
+                if (b > -0.5f && b < 0.5f) return; // nothing
+                if (b < 0) {                       // the back of a polygon
+                    for (std::size_t i = first; i < first + count; ++i)
+                        backface += layout.delta_ff[i];
+                    return;
+                }
+                scan_pixels(rgba, first, run_sum(layout.delta_ff, first, count),
+                            std::uint32_t(count));
+            });
+        };
         const gpu::HemicubeVisibility vis(*scene_, layout, frame, pixels_.data(),
                                           shooter.geometry.centre, ids_.data());
         vis_[0] = vis_[1] = &vis;
         sphere_axis_ = dvec3(0.0);
-        if (mode_ == Mode::Hybrid) mark_partial(vis, pixels_.data(), gpu::face_threads(layout));
-        link_touched(shooter, shooter.geometry.area, gpu::face_threads(layout), links);
-        if (mode_ != Mode::Hemicube) link_missed_polygons(shooter, vis, links);
+        if (mode_ == Mode::Hybrid)
+            mark_partial(vis, pixels_.data(), gpu::face_threads(layout), add_runs);
+        else
+            add_runs();
+        backface_ = backface;
+        // The seen nodes and the polygons no pixel shows, linked in one loop.
+        link_in_chunks(links,
+                       {touched_job(shooter, shooter.geometry.area, gpu::face_threads(layout)),
+                        missed_polygons_job(shooter, vis)});
         vis_[0] = vis_[1] = nullptr;
     }
 
     // Nodes that a silhouette crosses (gpu::HemicubeVisibility::occlusion_edges): the
     // pixels where their polygon goes on behind something nearer border theirs.
-    // The faces are searched on threads of their own, the marks set after.
-    void mark_partial(const gpu::HemicubeVisibility& vis, const float* rgba, int threads) {
+    // The faces are searched on threads of their own, the marks set after. `alongside`, work
+    // that neither reads nor sets the marks, runs first as one more item of the same loop
+    // (the reduction's pixel runs: one thread adds them while the other searches faces).
+    template <class Work>
+    void mark_partial(const gpu::HemicubeVisibility& vis, const float* rgba, int threads,
+                      Work&& alongside) {
         for (auto& m : edge_pixels_) m.clear();
-        parallel_for(5, threads, [&](std::size_t f) {
+        parallel_for(6, threads, [&](std::size_t k) {
+            if (k == 0) return alongside();
+            const std::size_t f = k - 1;
             vis.occlusion_edges(int(f), [&](std::size_t i) { edge_pixels_[f].push_back(i); });
         });
         for (const auto& m : edge_pixels_)
@@ -782,31 +806,43 @@ class HemicubeProvider final : public FormFactorProvider {
             pixel_count_[id] = 0;
             analytic_[id] = px[3];
             touched_.push_back({p, level, index});
+            mark_ancestors(touched_.back());
         }
         pixel_sum_[id] += weight;
         pixel_count_[id] += count;
     }
 
-    // Links every node seen in this shot. pixel_scale turns a node's pixel sum into the
-    // pixel value's numerator: A_S for a polygon shooter (A_S F(S->j)), 1 for a point shot.
-    void link_touched(const Shooter& shooter, double pixel_scale, int threads,
-                      std::vector<Link>& links) {
-        // Mark the ancestors of every seen node: "something below was seen".
-        for (const PatchAddress& a : touched_) {
-            const bool tri = scene_->polygons[a.polygon].is_triangle();
-            std::uint32_t l = a.level, i = a.index;
-            while (l > 0) {
-                i = patch_parent(tri, l, i);
-                --l;
-                std::uint32_t& b = below_seen_[node_id(a.polygon, l, i)];
-                if (b == stamp_) break;
-                b = stamp_;
-            }
+    // Marks the ancestors of seen node a: "something below was seen" (link_node, occluded).
+    void mark_ancestors(const PatchAddress& a) {
+        const bool tri = scene_->polygons[a.polygon].is_triangle();
+        std::uint32_t l = a.level, i = a.index;
+        while (l > 0) {
+            i = patch_parent(tri, l, i);
+            --l;
+            std::uint32_t& b = below_seen_[node_id(a.polygon, l, i)];
+            if (b == stamp_) break;
+            b = stamp_;
         }
-        link_in_chunks(touched_.size(), kChunkNodes, threads, links,
-                       [&](std::size_t k, std::vector<Link>& out) {
-                           link_node(shooter, touched_[k], pixel_scale, out);
-                       });
+    }
+
+    // A list of items to link in chunks (link_in_chunks): link(begin, end, out) links items
+    // [begin, end) into out.
+    struct LinkJob {
+        std::size_t n = 0;      ///< items
+        std::size_t chunks = 1; ///< chunk_count()
+        std::function<void(std::size_t, std::size_t, std::vector<Link>&)> link;
+    };
+
+    // Links every node seen in this shot (scan_pixels has marked their ancestors).
+    // pixel_scale turns a node's pixel sum into the pixel value's numerator: A_S for a
+    // polygon shooter (A_S F(S->j)), 1 for a point shot.
+    LinkJob touched_job(const Shooter& shooter, double pixel_scale, int threads) const {
+        return {touched_.size(), chunk_count(touched_.size(), kChunkNodes, threads),
+                [this, &shooter, pixel_scale](std::size_t begin, std::size_t end,
+                                              std::vector<Link>& out) {
+                    for (std::size_t k = begin; k < end; ++k)
+                        link_node(shooter, touched_[k], pixel_scale, out);
+                }};
     }
 
     // How many chunks of about `chunk` items n items are cut into: one where n is under a
@@ -823,20 +859,26 @@ class HemicubeProvider final : public FormFactorProvider {
                      [&](std::size_t c) { body(c, c * n / chunks, (c + 1) * n / chunks); });
     }
 
-    // Calls link(k, out) for k in [0, n), in chunks of about `chunk` on `threads`, each chunk
-    // into its own list, the lists appended to `links` in order: the links come in the order
-    // one thread would give them.
-    template <class Link_k>
-    void link_in_chunks(std::size_t n, std::size_t chunk, int threads, std::vector<Link>& links,
-                        Link_k&& link) {
-        const std::size_t chunks = chunk_count(n, chunk, threads);
+    // Links the items of each job (in chunks), all chunks in one loop: on all cores where
+    // there is more than one chunk. Each chunk goes into its own list, the lists appended to
+    // `links` in order: the links come in the order one thread would give them, job by job.
+    void link_in_chunks(std::vector<Link>& links, std::initializer_list<LinkJob> jobs) {
+        std::size_t chunks = 0;
+        for (const LinkJob& job : jobs) chunks += job.chunks;
         chunk_links_.resize(std::max(chunk_links_.size(), chunks));
-        for_chunks(n, chunks, threads, [&](std::size_t c, std::size_t begin, std::size_t end) {
+        parallel_for(chunks, chunks > 1 ? 0 : 1, [&](std::size_t c) {
             // Filled on this thread's stack (chunk_links_'s vectors share cache lines: each
             // push_back would move the line between the cores), its memory kept for later.
             std::vector<Link> out = std::move(chunk_links_[c]);
             out.clear();
-            for (std::size_t k = begin; k < end; ++k) link(k, out);
+            std::size_t k = c; // the chunk's number within its job
+            for (const LinkJob& job : jobs) {
+                if (k < job.chunks) {
+                    job.link(k * job.n / job.chunks, (k + 1) * job.n / job.chunks, out);
+                    break;
+                }
+                k -= job.chunks;
+            }
             chunk_links_[c] = std::move(out);
         });
         std::size_t total = links.size();
@@ -846,7 +888,7 @@ class HemicubeProvider final : public FormFactorProvider {
             links.insert(links.end(), chunk_links_[c].begin(), chunk_links_[c].end());
     }
 
-    // Links seen node a (link_touched): split where seen descendants are linked too, by its
+    // Links seen node a (touched_job): split where seen descendants are linked too, by its
     // visible parts where a silhouette crosses it, else whole.
     void link_node(const Shooter& shooter, const PatchAddress& a, double pixel_scale,
                    std::vector<Link>& links) const {
@@ -873,29 +915,31 @@ class HemicubeProvider final : public FormFactorProvider {
     // in front of the shooter that no pixel shows is linked whole, with its analytic value
     // computed here (its mean, near the shooter: near_mean), if its centre is seen in the
     // hemicube taken as a depth map (HemicubeVisibility::visible_in_depth_map).
-    void link_missed_polygons(const Shooter& shooter, const gpu::HemicubeVisibility& vis,
-                              std::vector<Link>& links) {
-        const dvec3& eye = shooter.geometry.centre;
-        link_in_chunks(scene_->polygons.size(), kChunkPolygons, 0, links,
-                       [&](std::size_t k, std::vector<Link>& out) {
-                           const auto p = std::uint32_t(k);
-                           if (polygon_seen_[p] == stamp_ || p == shooter.address.polygon) return;
-                           if (hidden_ && std::binary_search(hidden_->begin(), hidden_->end(), p))
-                               return;
-                           const Polygon& poly = scene_->polygons[p];
-                           const dvec3& centre = centre_[p];
-                           if (glm::dot(poly.normal, centre - eye) >= 0)
-                               return; // faces away from the shooter
-                           if (!vis.visible_in_depth_map(centre, p)) return;
-                           const double f =
-                               near_mean(shooter, {p, 0, 0}, poly.area,
-                                         float(analytic_at(shooter, centre, poly.normal)));
-                           if (f <= 0) return;
-                           Link l;
-                           l.receiver = {p, 0, 0};
-                           l.ff = l.ff_analytic = float(f);
-                           out.push_back(l);
-                       });
+    LinkJob missed_polygons_job(const Shooter& shooter, const gpu::HemicubeVisibility& vis) const {
+        const std::size_t n = mode_ == Mode::Hemicube ? 0 : scene_->polygons.size();
+        return {n, chunk_count(n, kChunkPolygons, 0),
+                [this, &shooter, &vis](std::size_t begin, std::size_t end, std::vector<Link>& out) {
+                    for (std::size_t k = begin; k < end; ++k)
+                        link_missed_polygon(shooter, vis, std::uint32_t(k), out);
+                }};
+    }
+
+    void link_missed_polygon(const Shooter& shooter, const gpu::HemicubeVisibility& vis,
+                             std::uint32_t p, std::vector<Link>& links) const {
+        if (polygon_seen_[p] == stamp_ || p == shooter.address.polygon) return;
+        if (hidden_ && std::binary_search(hidden_->begin(), hidden_->end(), p)) return;
+        const Polygon& poly = scene_->polygons[p];
+        const dvec3& centre = centre_[p];
+        if (glm::dot(poly.normal, centre - shooter.geometry.centre) >= 0)
+            return; // faces away from the shooter
+        if (!vis.visible_in_depth_map(centre, p)) return;
+        const double f = near_mean(shooter, {p, 0, 0}, poly.area,
+                                   float(analytic_at(shooter, centre, poly.normal)));
+        if (f <= 0) return;
+        Link l;
+        l.receiver = {p, 0, 0};
+        l.ff = l.ff_analytic = float(f);
+        links.push_back(l);
     }
 
     // Adds the link of node a: analytic F(j->S), and the pixel sum as A_S F(S->j).
@@ -1022,7 +1066,7 @@ class HemicubeProvider final : public FormFactorProvider {
     bool point_shot_ = false; ///< the last shot was shoot_sphere()'s
     std::vector<std::uint32_t> seen_, below_seen_, polygon_seen_;
     std::vector<PatchAddress> touched_;
-    std::vector<std::vector<Link>> chunk_links_; ///< link_touched(): per chunk of seen nodes
+    std::vector<std::vector<Link>> chunk_links_; ///< link_in_chunks(): per chunk
     std::vector<Timing> timings_;
     std::uint32_t stamp_ = 0;
     double max_power_ = 0;
