@@ -221,28 +221,42 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
     glTextureParameteri(patch_ids_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(patch_ids_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 
-    // One framebuffer large enough for the largest hemicube.
-    colour_ = gl::Texture::create(GL_TEXTURE_2D);
-    colour_.storage_2d(1, GL_RGBA32F, 2 * max_res_, max_res_ + max_res_ / 2);
-    depth_ = gl::Renderbuffer::create();
-    depth_.storage(GL_DEPTH_COMPONENT32F, 2 * max_res_, max_res_ + max_res_ / 2);
-    fbo_ = gl::Framebuffer::create();
     if (glGetError() == GL_OUT_OF_MEMORY) {
-        const double mib =
-            (double(base) * base * 8 * 4 / 3 + 2.0 * max_res_ * (max_res_ + max_res_ / 2) * 20) /
-            (1 << 20);
-        throw InputError("the GL driver could not allocate the hemicube and patch-ID textures (" +
-                         std::to_string(long(mib)) +
-                         " MiB): use a smaller --max-resolution "
-                         "(or --resolution; now " +
-                         std::to_string(max_res_) + ") or --max-depth (now " +
-                         std::to_string(max_depth) + ")");
+        const double mib = double(base) * base * 8 * 4 / 3 / (1 << 20);
+        throw InputError(
+            "the GL driver could not allocate the patch-ID texture (" + std::to_string(long(mib)) +
+            " MiB): use a smaller --max-resolution "
+            "(or --resolution; now " +
+            std::to_string(max_res_) + ") or --max-depth (now " + std::to_string(max_depth) + ")");
     }
-    fbo_.attach(GL_COLOR_ATTACHMENT0, colour_);
-    fbo_.attach(GL_DEPTH_ATTACHMENT, depth_);
-    fbo_.check_complete();
+    // The largest hemicube's framebuffer now, so that a lack of memory shows at the start.
+    target(make_hemicube_layout(max_res_));
 
     program_ = gl::link_program({"hemicube.vert", "hemicube.frag"});
+}
+
+const gl::Framebuffer& HemicubeRenderer::target(const HemicubeLayout& layout) {
+    for (const Target& t : targets_)
+        if (t.width == layout.width && t.height == layout.height) return t.fbo;
+    Target t;
+    t.width = layout.width;
+    t.height = layout.height;
+    t.colour = gl::Texture::create(GL_TEXTURE_2D);
+    t.colour.storage_2d(1, GL_RGBA32F, t.width, t.height);
+    t.depth = gl::Renderbuffer::create();
+    t.depth.storage(GL_DEPTH_COMPONENT32F, t.width, t.height);
+    if (glGetError() == GL_OUT_OF_MEMORY)
+        throw InputError("the GL driver could not allocate a " + std::to_string(t.width) + " x " +
+                         std::to_string(t.height) + " hemicube framebuffer (" +
+                         std::to_string(long(20.0 * t.width * t.height / (1 << 20))) +
+                         " MiB): use a smaller --max-resolution (or --resolution; now " +
+                         std::to_string(max_res_) + ")");
+    t.fbo = gl::Framebuffer::create();
+    t.fbo.attach(GL_COLOR_ATTACHMENT0, t.colour);
+    t.fbo.attach(GL_DEPTH_ATTACHMENT, t.depth);
+    t.fbo.check_complete();
+    targets_.push_back(std::move(t));
+    return targets_.back().fbo;
 }
 
 void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layout, double lod_bias,
@@ -266,21 +280,19 @@ void HemicubeRenderer::draw(const Shooter& shooter, const HemicubeLayout& layout
     const dvec3 eye = c - origin_;
     const double eps = eps_;
 
+    const GLuint fbo = target(layout).id();
     const gl::StateGuard guard; // restores what this changes (gl/state.h)
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_GREATER);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     glViewport(0, 0, layout.width, layout.height);
-    // The clears (and draws) kept to this layout's corner of the framebuffer, sized for the
-    // finest layout: a coarse view probe would otherwise clear the whole of it.
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(0, 0, layout.width, layout.height);
+    glDisable(GL_SCISSOR_TEST); // the whole of the layout's own framebuffer: a fast clear
     const float zero[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
-    glClearNamedFramebufferfi(fbo_.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero);
+    glClearNamedFramebufferfi(fbo, GL_DEPTH_STENCIL, 0, 0.0f, 0);
     glUseProgram(program_.id());
     glBindVertexArray(vao_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, polygons_.id());
@@ -413,8 +425,9 @@ void HemicubeRenderer::draw_polygons(std::uint32_t begin, std::uint32_t end) {
 
 void HemicubeRenderer::read_back(const HemicubeLayout& layout, std::vector<float>& rgba) {
     rgba.resize(std::size_t(layout.width) * layout.height * 4);
-    glNamedFramebufferReadBuffer(fbo_.id(), GL_COLOR_ATTACHMENT0);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
+    const GLuint fbo = target(layout).id();
+    glNamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glReadPixels(0, 0, layout.width, layout.height, GL_RGBA, GL_FLOAT, rgba.data());
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
