@@ -159,6 +159,19 @@ class HEMIRAD_API FormFactorProvider {
         (void)shooter, (void)probe;
         return false;
     }
+    /// A cluster's shares as the solver reads them after shoot_cluster() (misplaced:
+    /// last_parallax_fraction() + last_near_fraction() + last_backface_fraction(); backface:
+    /// last_backface_fraction()), from coarse hemicubes of polygon IDs before it shoots, so
+    /// that a cluster the solver refuses costs a fraction of a shot. Returns false where the
+    /// provider has no cheaper way than shoot_cluster().
+    struct ClusterProbe {
+        double misplaced = 0;
+        double backface = 0;
+    };
+    virtual bool probe_cluster(const ClusterShooter& cluster, ClusterProbe& probe) {
+        (void)cluster, (void)probe;
+        return false;
+    }
     /// The hemicube rendered by the last shoot() (GPU providers; for display and tests):
     /// width x height RGBA floats, row 0 at the bottom (GL order), laid out as
     /// gpu::HemicubeLayout (top face at (0,0) res x res, four half faces around it). Per

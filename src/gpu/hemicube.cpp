@@ -235,9 +235,9 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
     program_ = gl::link_program({"hemicube.vert", "hemicube.frag"});
 }
 
-const gl::Framebuffer& HemicubeRenderer::target(const HemicubeLayout& layout) {
+GLuint HemicubeRenderer::target(const HemicubeLayout& layout) {
     for (const Target& t : targets_)
-        if (t.width == layout.width && t.height == layout.height) return t.fbo;
+        if (t.width == layout.width && t.height == layout.height) return t.fbo.id();
     Target t;
     t.width = layout.width;
     t.height = layout.height;
@@ -256,7 +256,7 @@ const gl::Framebuffer& HemicubeRenderer::target(const HemicubeLayout& layout) {
     t.fbo.attach(GL_DEPTH_ATTACHMENT, t.depth);
     t.fbo.check_complete();
     targets_.push_back(std::move(t));
-    return targets_.back().fbo;
+    return targets_.back().fbo.id();
 }
 
 void HemicubeRenderer::render(const Shooter& shooter, const HemicubeLayout& layout, double lod_bias,
@@ -280,7 +280,7 @@ void HemicubeRenderer::draw(const Shooter& shooter, const HemicubeLayout& layout
     const dvec3 eye = c - origin_;
     const double eps = eps_;
 
-    const GLuint fbo = target(layout).id();
+    const GLuint fbo = target(layout);
     const gl::StateGuard guard; // restores what this changes (gl/state.h)
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glDisable(GL_BLEND);
@@ -425,7 +425,7 @@ void HemicubeRenderer::draw_polygons(std::uint32_t begin, std::uint32_t end) {
 
 void HemicubeRenderer::read_back(const HemicubeLayout& layout, std::vector<float>& rgba) {
     rgba.resize(std::size_t(layout.width) * layout.height * 4);
-    const GLuint fbo = target(layout).id();
+    const GLuint fbo = target(layout);
     glNamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);

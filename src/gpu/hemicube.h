@@ -148,8 +148,8 @@ class HemicubeRenderer {
         gl::Framebuffer fbo;
     };
     std::vector<Target> targets_;
-    /// The framebuffer of `layout`'s size, made on first use.
-    const gl::Framebuffer& target(const HemicubeLayout& layout);
+    /// The framebuffer of `layout`'s size (its GL name), made on first use.
+    GLuint target(const HemicubeLayout& layout);
     gl::Program program_;
 };
 

@@ -244,12 +244,7 @@ class HemicubeProvider final : public FormFactorProvider {
         links.clear();
         timings_.clear();
         if (c.rect.count > 0) {
-            Shooter flat;
-            flat.address = {kNoShooterPolygon, 0, 0};
-            flat.geometry = c.rect;
-            flat.normal = c.axis;
-            flat.unshot_power = c.unshot_power;
-            flat.power_fraction = c.power_fraction;
+            const Shooter flat = flat_shooter(c);
             renderer_->set_hidden(c.members);
             hidden_ = &c.members;
             shoot(flat, links);
@@ -267,19 +262,10 @@ class HemicubeProvider final : public FormFactorProvider {
             near_fraction_ = 0;
             return;
         }
-        Shooter stand_in;
-        stand_in.unshot_power = c.unshot_power;
-        stand_in.power_fraction = c.power_fraction;
-        const int res = resolution_for(stand_in);
-        Sphere s;
-        s.centre = c.centre;
-        s.axis = c.axis;
-        s.first = perpendicular(c.axis);
-        s.half = std::max(c.radius, 1e-9 * diagonal_);
-        const double back = c.back_share();
-        s.front_only = back < 1e-3;
-        const double scale = s.front_only ? 1.0 / std::max(1.0 - back, 1e-12) : 1.0;
-        s.intensity = [&c, scale](const dvec3& d) { return c.intensity(d) * scale; };
+        if (probe_seconds_ > 0) timings_.push_back({"probe", probe_seconds_});
+        probe_seconds_ = 0;
+        const int res = resolution_for(stand_in(c));
+        const Sphere s = cluster_sphere(c);
         renderer_->set_hidden(c.members, true);
         hidden_ = &c.members;
         shoot_sphere(s, res, links);
@@ -347,7 +333,102 @@ class HemicubeProvider final : public FormFactorProvider {
         backface_ += (1.0 - backface_) * behind;
     }
 
+    // The shares shoot_cluster() leaves for the solver, on 64² hemicubes of polygon IDs: a
+    // flat cluster's as probe_view() takes a patch's (its backs and parallax); a point
+    // cluster's from each pixel's flux (the lobes' intensity times the pixel's solid angle),
+    // with the point its ray meets on the polygon it shows standing for the links' receivers
+    // (share_in_front, the near weight (R / r)^2).
+    bool probe_cluster(const ClusterShooter& c, ClusterProbe& probe) override {
+        bind();
+        const auto t0 = Clock::now();
+        const gpu::HemicubeLayout& layout = layout_of(kProbeResolution);
+        const std::size_t n = std::size_t(layout.width) * layout.height;
+        if (c.rect.count > 0) {
+            const Shooter flat = flat_shooter(c);
+            if (resolution_for(flat) <= kProbeResolution) return false;
+            renderer_->set_hidden(c.members);
+            renderer_->render_polygon_ids(flat, layout);
+            renderer_->set_hidden({});
+            renderer_->read_back(layout, probe_pixels_);
+            double back = 0;
+            for (std::size_t i = 0; i < n; ++i)
+                if (probe_pixels_[4 * i + 2] < -0.5f) back += layout.delta_ff[i];
+            probe.backface = back;
+            probe.misplaced =
+                gpu::parallax_fraction(*scene_, flat, layout, probe_pixels_.data()) + back;
+            probe_seconds_ += since(t0);
+            return true;
+        }
+        if (resolution_for(stand_in(c)) <= kProbeResolution) return false;
+        const Sphere s = cluster_sphere(c);
+        const double d2 = 4.0 / (double(layout.res) * layout.res); // pixel area at 1
+        const double R2 = c.radius * c.radius;
+        const double eps = 1e-6 * std::max(c.radius, 1e-300);
+        double back = 0, seen = 0, total = 0, near = 0, parallax = 0;
+        renderer_->set_hidden(c.members, true);
+        for (int k = s.front_only ? 1 : 0; k < 2; ++k) {
+            const Shooter side = point_shooter(s, k == 0 ? -1.0 : 1.0);
+            renderer_->render_polygon_ids(side, layout);
+            renderer_->read_back(layout, probe_pixels_);
+            const gpu::HemicubeFrame frame = gpu::hemicube_frame(side);
+            for (int f = 0; f < 5; ++f) {
+                const gpu::HemicubeLayout::Face& face = layout.faces[std::size_t(f)];
+                for (int j = 0; j < face.h; ++j)
+                    for (int i = 0; i < face.w; ++i) {
+                        const std::size_t at =
+                            std::size_t(face.y + j) * layout.width + std::size_t(face.x + i);
+                        const float id = probe_pixels_[4 * at + 2];
+                        if (id > -0.5f && id < 0.5f) continue; // nothing
+                        const dvec3 u = gpu::hemicube_direction(layout, frame, f, i, j);
+                        const double cf = glm::dot(u, frame.dir[std::size_t(f)]);
+                        const double flux = s.intensity(u) * d2 * cf * cf * cf;
+                        if (id < 0) {
+                            back += flux;
+                            continue;
+                        }
+                        const Polygon& q = scene_->polygons[std::size_t(id) - 1];
+                        const double along = glm::dot(u, q.normal);
+                        if (along == 0) continue;
+                        const double t = glm::dot(q.v[0] - s.centre, q.normal) / along;
+                        if (!(t > 0)) continue;
+                        seen += flux;
+                        const double share = c.share_in_front(s.centre + t * u, q.normal, eps);
+                        total += flux * share;
+                        near += flux * share * std::min(1.0, R2 / (t * t));
+                    }
+            }
+            // (The shot's parallax is read on its hemicube along the axis: side 1, last.)
+            if (k == 1)
+                parallax = gpu::parallax_fraction(*scene_, side, layout, probe_pixels_.data());
+        }
+        renderer_->set_hidden({});
+        const double behind = seen > 0 ? std::clamp(1.0 - total / seen, 0.0, 1.0) : 0.0;
+        probe.backface = back + (1.0 - back) * behind;
+        probe.misplaced = parallax + (total > 0 ? near / total : 0) + probe.backface;
+        probe_seconds_ += since(t0);
+        return true;
+    }
+
   private:
+    // A flat cluster's stand-in: the rectangle around its polygons (ClusterShooter::rect).
+    static Shooter flat_shooter(const ClusterShooter& c) {
+        Shooter flat;
+        flat.address = {kNoShooterPolygon, 0, 0};
+        flat.geometry = c.rect;
+        flat.normal = c.axis;
+        flat.unshot_power = c.unshot_power;
+        flat.power_fraction = c.power_fraction;
+        return flat;
+    }
+
+    // A point cluster's power, for resolution_for().
+    static Shooter stand_in(const ClusterShooter& c) {
+        Shooter s;
+        s.unshot_power = c.unshot_power;
+        s.power_fraction = c.power_fraction;
+        return s;
+    }
+
     // A shot from a point over the whole sphere (a luminaire, a cluster).
     struct Sphere {
         dvec3 centre{0.0}, axis{0.0, -1.0, 0.0}, first{1.0, 0.0, 0.0}; ///< first: along the
@@ -360,6 +441,22 @@ class HemicubeProvider final : public FormFactorProvider {
     static dvec3 perpendicular(const dvec3& a) {
         const dvec3 t = std::abs(a.x) < 0.9 ? dvec3(1, 0, 0) : dvec3(0, 1, 0);
         return glm::normalize(t - glm::dot(t, a) * a);
+    }
+
+    // A point cluster's sphere: its lobes' intensity about its centre; the hemicube against
+    // the axis is left out where it would take under 0.1 % of the power, and that light
+    // added to the other's (scaled: energy is kept). Refers to c.
+    Sphere cluster_sphere(const ClusterShooter& c) const {
+        Sphere s;
+        s.centre = c.centre;
+        s.axis = c.axis;
+        s.first = perpendicular(c.axis);
+        s.half = std::max(c.radius, 1e-9 * diagonal_);
+        const double back = c.back_share();
+        s.front_only = back < 1e-3;
+        const double scale = s.front_only ? 1.0 / std::max(1.0 - back, 1e-12) : 1.0;
+        s.intensity = [&c, scale](const dvec3& d) { return c.intensity(d) * scale; };
+        return s;
     }
 
     // Two hemicubes, along +axis and against it, each from a stand-in shooter (a small square

@@ -581,7 +581,25 @@ bool Solver::shoot_cluster(ShotRecord& rec, std::uint32_t& polygon) {
         c.unshot_power = weight;
         c.power_fraction = total > 0 ? std::min(1.0, weight / total) : 1.0;
 
+        // A cluster not measured yet is measured on coarse hemicubes first, where the
+        // provider has them: a refused one then costs a fraction of a shot.
         t0 = Clock::now();
+        if (!measured(cluster_view_[node])) {
+            FormFactorProvider::ClusterProbe probe;
+            if (provider_->probe_cluster(c, probe)) {
+                ++rec.probes;
+                cluster_view_[node] = probe.backface > options_.enclosed_fraction
+                                          ? kViewEnclosed
+                                          : parallax_code(probe.misplaced);
+                if (must_split_cluster(node)) {
+                    rec.t_form_factors += since(t0);
+                    ++rec.refined;
+                    node = best;
+                    t0 = Clock::now();
+                    continue;
+                }
+            }
+        }
         provider_->shoot_cluster(c, links_);
         rec.t_form_factors += since(t0);
         for (const FormFactorProvider::Timing& t : provider_->last_timings()) {
