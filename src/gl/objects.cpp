@@ -70,6 +70,26 @@ void Renderbuffer::storage(GLenum internal_format, GLsizei width, GLsizei height
     glNamedRenderbufferStorage(id(), internal_format, width, height);
 }
 
+FloatTarget FloatTarget::create(int width, int height) {
+    while (glGetError() != GL_NO_ERROR) {} // earlier errors are not this allocation's
+    FloatTarget t;
+    t.width = width;
+    t.height = height;
+    t.colour = Texture::create(GL_TEXTURE_2D);
+    t.colour.storage_2d(1, GL_RGBA32F, width, height);
+    t.depth = Renderbuffer::create();
+    t.depth.storage(GL_DEPTH_COMPONENT32F, width, height);
+    if (glGetError() == GL_OUT_OF_MEMORY)
+        throw InputError("the GL driver could not allocate a " + std::to_string(width) + " x " +
+                         std::to_string(height) + " float framebuffer (" +
+                         std::to_string(long(20.0 * width * height / (1 << 20))) + " MiB)");
+    t.fbo = Framebuffer::create();
+    t.fbo.attach(GL_COLOR_ATTACHMENT0, t.colour);
+    t.fbo.attach(GL_DEPTH_ATTACHMENT, t.depth);
+    t.fbo.check_complete();
+    return t;
+}
+
 Framebuffer Framebuffer::create() {
     GLuint id = 0;
     glCreateFramebuffers(1, &id);

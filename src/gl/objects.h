@@ -110,6 +110,18 @@ class Framebuffer : public detail::Object<Framebuffer> {
     static void destroy(GLuint id) noexcept;
 };
 
+/// An offscreen target: an RGBA32F colour texture and a 32-bit float depth buffer of one
+/// size, attached to a framebuffer (the hemicube's layouts, the solution renderer's views).
+struct FloatTarget {
+    int width = 0, height = 0;
+    Texture colour;
+    Renderbuffer depth;
+    Framebuffer fbo;
+    /// Throws hemirad::InputError naming the size when the driver is out of memory for it,
+    /// hemirad::RuntimeError when the framebuffer is not complete.
+    static FloatTarget create(int width, int height);
+};
+
 class VertexArray : public detail::Object<VertexArray> {
   public:
     VertexArray() noexcept = default;

@@ -236,26 +236,15 @@ HemicubeRenderer::HemicubeRenderer(const Scene& scene, const Discretisation& dis
 }
 
 GLuint HemicubeRenderer::target(const HemicubeLayout& layout) {
-    for (const Target& t : targets_)
+    for (const gl::FloatTarget& t : targets_)
         if (t.width == layout.width && t.height == layout.height) return t.fbo.id();
-    Target t;
-    t.width = layout.width;
-    t.height = layout.height;
-    t.colour = gl::Texture::create(GL_TEXTURE_2D);
-    t.colour.storage_2d(1, GL_RGBA32F, t.width, t.height);
-    t.depth = gl::Renderbuffer::create();
-    t.depth.storage(GL_DEPTH_COMPONENT32F, t.width, t.height);
-    if (glGetError() == GL_OUT_OF_MEMORY)
-        throw InputError("the GL driver could not allocate a " + std::to_string(t.width) + " x " +
-                         std::to_string(t.height) + " hemicube framebuffer (" +
-                         std::to_string(long(20.0 * t.width * t.height / (1 << 20))) +
-                         " MiB): use a smaller --max-resolution (or --resolution; now " +
-                         std::to_string(max_res_) + ")");
-    t.fbo = gl::Framebuffer::create();
-    t.fbo.attach(GL_COLOR_ATTACHMENT0, t.colour);
-    t.fbo.attach(GL_DEPTH_ATTACHMENT, t.depth);
-    t.fbo.check_complete();
-    targets_.push_back(std::move(t));
+    try {
+        targets_.push_back(gl::FloatTarget::create(layout.width, layout.height));
+    } catch (const InputError& e) {
+        throw InputError(std::string(e.what()) + " for the hemicube: use a smaller " +
+                         "--max-resolution (or --resolution; now " + std::to_string(max_res_) +
+                         ")");
+    }
     return targets_.back().fbo.id();
 }
 

@@ -141,13 +141,7 @@ class HemicubeRenderer {
     /// its own and clears the whole of it: llvmpipe's fast clear. A scissored clear of a
     /// coarse layout's corner of one large framebuffer took 1.25 ms (a 64² view probe's
     /// render 2.5 ms, of a 256² shot's 16 ms).
-    struct Target {
-        int width = 0, height = 0;
-        gl::Texture colour;
-        gl::Renderbuffer depth;
-        gl::Framebuffer fbo;
-    };
-    std::vector<Target> targets_;
+    std::vector<gl::FloatTarget> targets_;
     /// The framebuffer of `layout`'s size (its GL name), made on first use.
     GLuint target(const HemicubeLayout& layout);
     gl::Program program_;

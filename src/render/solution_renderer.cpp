@@ -194,10 +194,7 @@ struct SolutionRenderer::Impl {
     gl::VertexArray highlight_vao;
 
     // Offscreen target of render().
-    int fb_width = 0, fb_height = 0;
-    gl::Texture colour;
-    gl::Renderbuffer depth;
-    gl::Framebuffer fbo;
+    gl::FloatTarget target;
     std::vector<float> readback;
 
     void build(const Hierarchy& h);
@@ -552,27 +549,19 @@ ImageRGB SolutionRenderer::render(const Hierarchy& h, const Camera& camera,
     m.ensure_geometry(h);
     m.compute_colours(h, options);
     const int w = options.width, ht = options.height;
-    if (!m.fbo || m.fb_width != w || m.fb_height != ht) {
-        m.colour = gl::Texture::create(GL_TEXTURE_2D);
-        m.colour.storage_2d(1, GL_RGBA32F, w, ht);
-        m.depth = gl::Renderbuffer::create();
-        m.depth.storage(GL_DEPTH_COMPONENT32F, w, ht);
-        m.fbo = gl::Framebuffer::create();
-        m.fbo.attach(GL_COLOR_ATTACHMENT0, m.colour);
-        m.fbo.attach(GL_DEPTH_ATTACHMENT, m.depth);
-        m.fbo.check_complete();
-        m.fb_width = w, m.fb_height = ht;
-    }
+    if (!m.target.fbo || m.target.width != w || m.target.height != ht)
+        m.target = gl::FloatTarget::create(w, ht);
     const float bg[4] = {float(options.background.r), float(options.background.g),
                          float(options.background.b), 1.f};
-    glClearNamedFramebufferfv(m.fbo.id(), GL_COLOR, 0, bg);
-    glClearNamedFramebufferfi(m.fbo.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0); // reversed Z: far = 0
-    glBindFramebuffer(GL_FRAMEBUFFER, m.fbo.id());
+    glClearNamedFramebufferfv(m.target.fbo.id(), GL_COLOR, 0, bg);
+    glClearNamedFramebufferfi(m.target.fbo.id(), GL_DEPTH_STENCIL, 0, 0.0f,
+                              0); // reversed Z: far = 0
+    glBindFramebuffer(GL_FRAMEBUFFER, m.target.fbo.id());
     glViewport(0, 0, w, ht);
     m.draw_scene(camera, options, w, ht);
 
     m.readback.resize(std::size_t(w) * ht * 4);
-    glNamedFramebufferReadBuffer(m.fbo.id(), GL_COLOR_ATTACHMENT0);
+    glNamedFramebufferReadBuffer(m.target.fbo.id(), GL_COLOR_ATTACHMENT0);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glReadPixels(0, 0, w, ht, GL_RGBA, GL_FLOAT, m.readback.data());
     ImageRGB image(w, ht);
