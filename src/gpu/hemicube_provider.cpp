@@ -167,13 +167,7 @@ class HemicubeProvider final : public FormFactorProvider {
         if (resolution_for(shooter) <= kProbeResolution) return false;
         const gpu::HemicubeLayout& layout = layout_of(kProbeResolution);
         const auto t0 = Clock::now();
-        // The measures read the polygon IDs alone.
-        renderer_->render_polygon_ids(shooter, layout);
-        renderer_->read_back(layout, probe_pixels_);
-        double backface = 0;
-        const std::size_t n = std::size_t(layout.width) * layout.height;
-        for (std::size_t i = 0; i < n; ++i)
-            if (probe_pixels_[4 * i + 2] < -0.5f) backface += layout.delta_ff[i];
+        const double backface = render_probe(shooter, layout);
         probe.enclosed =
             backface + gpu::near_fraction(*scene_, shooter, layout, probe_pixels_.data(),
                                           0.25 * std::sqrt(shooter.geometry.area));
@@ -342,17 +336,12 @@ class HemicubeProvider final : public FormFactorProvider {
         bind();
         const auto t0 = Clock::now();
         const gpu::HemicubeLayout& layout = layout_of(kProbeResolution);
-        const std::size_t n = std::size_t(layout.width) * layout.height;
         if (c.rect.count > 0) {
             const Shooter flat = flat_shooter(c);
             if (resolution_for(flat) <= kProbeResolution) return false;
             renderer_->set_hidden(c.members);
-            renderer_->render_polygon_ids(flat, layout);
+            const double back = render_probe(flat, layout);
             renderer_->set_hidden({});
-            renderer_->read_back(layout, probe_pixels_);
-            double back = 0;
-            for (std::size_t i = 0; i < n; ++i)
-                if (probe_pixels_[4 * i + 2] < -0.5f) back += layout.delta_ff[i];
             probe.backface = back;
             probe.misplaced =
                 gpu::parallax_fraction(*scene_, flat, layout, probe_pixels_.data()) + back;
@@ -361,7 +350,6 @@ class HemicubeProvider final : public FormFactorProvider {
         }
         if (resolution_for(stand_in(c)) <= kProbeResolution) return false;
         const Sphere s = cluster_sphere(c);
-        const double d2 = 4.0 / (double(layout.res) * layout.res); // pixel area at 1
         const double R2 = c.radius * c.radius;
         const double eps = 1e-6 * std::max(c.radius, 1e-300);
         double back = 0, seen = 0, total = 0, near = 0, parallax = 0;
@@ -380,8 +368,7 @@ class HemicubeProvider final : public FormFactorProvider {
                         const float id = probe_pixels_[4 * at + 2];
                         if (id > -0.5f && id < 0.5f) continue; // nothing
                         const dvec3 u = gpu::hemicube_direction(layout, frame, f, i, j);
-                        const double cf = glm::dot(u, frame.dir[std::size_t(f)]);
-                        const double flux = s.intensity(u) * d2 * cf * cf * cf;
+                        const double flux = pixel_flux(s, layout, frame, f, u);
                         if (id < 0) {
                             back += flux;
                             continue;
@@ -410,6 +397,18 @@ class HemicubeProvider final : public FormFactorProvider {
     }
 
   private:
+    // Renders a probe's hemicube of polygon IDs (the measures read nothing else) into
+    // probe_pixels_ and returns the share of it that the backs of polygons take.
+    double render_probe(const Shooter& shooter, const gpu::HemicubeLayout& layout) {
+        renderer_->render_polygon_ids(shooter, layout);
+        renderer_->read_back(layout, probe_pixels_);
+        double backface = 0;
+        const std::size_t n = std::size_t(layout.width) * layout.height;
+        for (std::size_t i = 0; i < n; ++i)
+            if (probe_pixels_[4 * i + 2] < -0.5f) backface += layout.delta_ff[i];
+        return backface;
+    }
+
     // A flat cluster's stand-in: the rectangle around its polygons (ClusterShooter::rect).
     static Shooter flat_shooter(const ClusterShooter& c) {
         Shooter flat;
@@ -459,6 +458,17 @@ class HemicubeProvider final : public FormFactorProvider {
         return s;
     }
 
+    // The flux per watt emitted that point shot s sends through the pixel of face f whose
+    // (unit) direction is u: I(u) times the pixel's solid angle, its area at unit distance
+    // along the face's axis times cos^3 of u off that axis.
+    static double pixel_flux(const Sphere& s, const gpu::HemicubeLayout& layout,
+                             const gpu::HemicubeFrame& frame, int f, const dvec3& u) {
+        const double d2 = 4.0 / (double(layout.res) * layout.res);
+        const double c = glm::dot(u, frame.dir[std::size_t(f)]);
+        const double omega = d2 * c * c * c; // the pixel's solid angle
+        return s.intensity(u) * omega;
+    }
+
     // Two hemicubes, along +axis and against it, each from a stand-in shooter (a small square
     // centred on the point, of no polygon, so that every polygon but the hidden ones is
     // drawn). Their patch IDs give the linking and the visibility, as for a polygon shooter;
@@ -485,7 +495,6 @@ class HemicubeProvider final : public FormFactorProvider {
             t0 = Clock::now();
             const gpu::HemicubeFrame frame = gpu::hemicube_frame(sides[k]);
             gpu::fill_cracks(*scene_, layout, frame, buffers[k]->data(), s.centre, sphere_ids_[k]);
-            const double d2 = 4.0 / (double(layout.res) * layout.res); // pixel area at 1
             const std::vector<float>& px = *buffers[k];
             // Each pixel's flux on the faces' threads (-1: no front there), then the nodes'
             // sums in order.
@@ -500,9 +509,7 @@ class HemicubeProvider final : public FormFactorProvider {
                         flux_[at] = -1.f;
                         if (id > -0.5f && id < 0.5f) continue; // nothing
                         const dvec3 u = gpu::hemicube_direction(layout, frame, int(f), i, j);
-                        const double c = glm::dot(u, frame.dir[f]);
-                        const double omega = d2 * c * c * c; // solid angle of the pixel
-                        const double flux = s.intensity(u) * omega;
+                        const double flux = pixel_flux(s, layout, frame, int(f), u);
                         if (id < 0)
                             face_back[f] += flux;
                         else
