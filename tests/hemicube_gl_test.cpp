@@ -587,76 +587,81 @@ TEST(ClusterProbe, ReadsTheSharesTheShotReads) {
 // rectangle's reach, each polygon takes the light its pixels take, the node values keeping
 // their shape (match_pixel_totals): the analytic values at node centres, each with its own
 // visibility test, misjudge a tessellated round surface, whose facets seen edge-on hide each
-// other's centres. A room 1 x 1 x 1, a column of 96 facets (radius 0.05, height 0.8) 0.35 or
-// 0.5 from a 0.1 square on the floor (its reach 0.071); the exact share is the ray-cast reference
-// provider's (the square as a polygon, 16 x 16 samples on it, occlusion by rays). The column
-// read 1.30 and 1.07 of it before the pixels divided the far light, 1.003 and 0.981 after. The
-// bar, 10 %, leaves room for the eye standing in for the square (O((reach/d)^2), 2-4 % here)
-// and for the pixels' aliasing on a column a few pixels wide. Where the pixels themselves
-// miss light it shows too: with 48 facets the column's pixels read 0.90 at 0.35.
+// other's centres. A room 1 x 1 x 1, a column of 16, 48 or 96 facets (radius 0.05, height
+// 0.8) 0.35 or 0.5 from a 0.1 square on the floor (its reach 0.071); the exact share is the
+// ray-cast reference provider's (the square as a polygon, 16 x 16 samples on it, occlusion by
+// rays). Before the pixels divided the far light the column read 1.02 / 0.98, 1.16 / 1.21 and
+// 1.30 / 1.07 of it (at 0.5 / 0.35); with the pixels counted from the links, 0.92 / 0.90 at
+// 48 facets (a node that GL's LOD showed together with all its children had no link to carry
+// its pixels); now 0.98-1.01. The bar, 5 %, is the eye standing in for the square: a kernel
+// error of order (reach / distance)^2, 2-4 % here.
 TEST(FlatCluster, FarReceiversTakeTheLightTheirPixelsTake) {
-    for (const double column_x : {0.2, 0.35}) {
-        Scene scene;
-        scene.materials.push_back({"grey", dvec3(0.5), dvec3(0.0)});
-        scene.groups = {"room", "column", "cluster"};
-        const dvec3 c[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
-                            {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-        const int faces[6][4] = {{1, 2, 3, 0}, {7, 6, 5, 4}, {3, 7, 4, 0},
-                                 {5, 6, 2, 1}, {4, 5, 1, 0}, {2, 6, 7, 3}}; // facing in
-        for (const auto& f : faces) add_polygon(scene, {c[f[0]], c[f[1]], c[f[2]], c[f[3]]}, 0, 0);
-        const int facets = 96;
-        const double r = 0.05, height = 0.8;
-        for (int k = 0; k < facets; ++k) {
-            const double a0 = 2 * M_PI * k / facets, a1 = 2 * M_PI * (k + 1) / facets;
-            const dvec3 p0(column_x + r * std::cos(a0), 0, 0.5 + r * std::sin(a0));
-            const dvec3 p1(column_x + r * std::cos(a1), 0, 0.5 + r * std::sin(a1));
-            add_polygon(scene, {p0, p0 + dvec3(0, height, 0), p1 + dvec3(0, height, 0), p1}, 0, 1);
-        }
-        const dvec3 centre(0.7, 0.002, 0.5);
-        const double h = 0.05;
-        const auto square = std::uint32_t(scene.polygons.size());
-        add_polygon(scene,
-                    {centre + dvec3(-h, 0, -h), centre + dvec3(-h, 0, h), centre + dvec3(h, 0, h),
-                     centre + dvec3(h, 0, -h)},
-                    0, 2);
-        finish_scene(scene, "test");
-        ASSERT_GT(scene.polygons[square].normal.y, 0.9);
-        const Discretisation disc = discretise(scene, HierarchyOptions{});
-
-        // The share of the square's light on the column: the cluster's links are per watt
-        // (E_j / P), the reference's F(j -> S) (times A_j / A_S).
-        const auto on_column = [&](const std::vector<Link>& links, double scale) {
-            double sum = 0;
-            for (const Link& l : links) {
-                const Polygon& q = scene.polygons[l.receiver.polygon];
-                if (q.group == 1)
-                    sum +=
-                        double(l.ff) * patch_geometry(q, l.receiver.level, l.receiver.index).area;
+    for (const int facets : {16, 48, 96})
+        for (const double column_x : {0.2, 0.35}) {
+            Scene scene;
+            scene.materials.push_back({"grey", dvec3(0.5), dvec3(0.0)});
+            scene.groups = {"room", "column", "cluster"};
+            const dvec3 c[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+            const int faces[6][4] = {{1, 2, 3, 0}, {7, 6, 5, 4}, {3, 7, 4, 0},
+                                     {5, 6, 2, 1}, {4, 5, 1, 0}, {2, 6, 7, 3}}; // facing in
+            for (const auto& f : faces)
+                add_polygon(scene, {c[f[0]], c[f[1]], c[f[2]], c[f[3]]}, 0, 0);
+            const double r = 0.05, height = 0.8;
+            for (int k = 0; k < facets; ++k) {
+                const double a0 = 2 * M_PI * k / facets, a1 = 2 * M_PI * (k + 1) / facets;
+                const dvec3 p0(column_x + r * std::cos(a0), 0, 0.5 + r * std::sin(a0));
+                const dvec3 p1(column_x + r * std::cos(a1), 0, 0.5 + r * std::sin(a1));
+                add_polygon(scene, {p0, p0 + dvec3(0, height, 0), p1 + dvec3(0, height, 0), p1}, 0,
+                            1);
             }
-            return sum * scale;
-        };
-        ClusterShooter cluster;
-        cluster.centre = centre;
-        cluster.axis = {0, 1, 0};
-        cluster.radius = h * std::sqrt(2.0);
-        cluster.normals = {{0, 1, 0}};
-        cluster.weights = {1.0};
-        cluster.unshot_power = 1;
-        cluster.members = {square};
-        cluster.rect = patch_geometry(scene.polygons[square], 0, 0);
-        std::vector<Link> links;
-        gpu_provider("hybrid", scene, disc, 256)->shoot_cluster(cluster, links);
-        const double shot = on_column(links, 1.0);
-        ProviderOptions o;
-        o.cpu.visibility_samples = 16;
-        make_provider("reference", scene, disc, o)
-            ->shoot(whole_polygon_shooter(scene, square), links);
-        const double exact = on_column(links, 1.0 / scene.polygons[square].area);
-        std::printf("column at x = %.2f: cluster %.5f, reference %.5f, ratio %.4f\n", column_x,
-                    shot, exact, shot / exact);
-        ASSERT_GT(exact, 0.01) << "the column must take a fair share for the test to mean anything";
-        EXPECT_NEAR(shot / exact, 1.0, 0.10) << "column at x = " << column_x;
-    }
+            const dvec3 centre(0.7, 0.002, 0.5);
+            const double h = 0.05;
+            const auto square = std::uint32_t(scene.polygons.size());
+            add_polygon(scene,
+                        {centre + dvec3(-h, 0, -h), centre + dvec3(-h, 0, h),
+                         centre + dvec3(h, 0, h), centre + dvec3(h, 0, -h)},
+                        0, 2);
+            finish_scene(scene, "test");
+            ASSERT_GT(scene.polygons[square].normal.y, 0.9);
+            const Discretisation disc = discretise(scene, HierarchyOptions{});
+
+            // The share of the square's light on the column: the cluster's links are per watt
+            // (E_j / P), the reference's F(j -> S) (times A_j / A_S).
+            const auto on_column = [&](const std::vector<Link>& links, double scale) {
+                double sum = 0;
+                for (const Link& l : links) {
+                    const Polygon& q = scene.polygons[l.receiver.polygon];
+                    if (q.group == 1)
+                        sum += double(l.ff) *
+                               patch_geometry(q, l.receiver.level, l.receiver.index).area;
+                }
+                return sum * scale;
+            };
+            ClusterShooter cluster;
+            cluster.centre = centre;
+            cluster.axis = {0, 1, 0};
+            cluster.radius = h * std::sqrt(2.0);
+            cluster.normals = {{0, 1, 0}};
+            cluster.weights = {1.0};
+            cluster.unshot_power = 1;
+            cluster.members = {square};
+            cluster.rect = patch_geometry(scene.polygons[square], 0, 0);
+            std::vector<Link> links;
+            gpu_provider("hybrid", scene, disc, 256)->shoot_cluster(cluster, links);
+            const double shot = on_column(links, 1.0);
+            ProviderOptions o;
+            o.cpu.visibility_samples = 16;
+            make_provider("reference", scene, disc, o)
+                ->shoot(whole_polygon_shooter(scene, square), links);
+            const double exact = on_column(links, 1.0 / scene.polygons[square].area);
+            std::printf(
+                "column of %d facets at x = %.2f: cluster %.5f, reference %.5f, ratio %.4f\n",
+                facets, column_x, shot, exact, shot / exact);
+            ASSERT_GT(exact, 0.01)
+                << "the column must take a fair share for the test to mean anything";
+            EXPECT_NEAR(shot / exact, 1.0, 0.05) << facets << " facets at x = " << column_x;
+        }
 }
 
 } // namespace

@@ -209,25 +209,30 @@ class HemicubeProvider final : public FormFactorProvider {
     // +24.5 % before; -2.6, +0.3, -0.4, +4.4 % after. The values keep their shape inside a
     // polygon (a plane under a point: leaves within 1.5 %, where the pixels alone give 11 %).
     void match_pixel_totals(std::vector<Link>& links) const {
-        match_pixel_totals(links, [](const Link&) { return true; });
+        match_pixel_totals(links, 1.0, [](const PatchAddress&) { return true; });
     }
 
-    // The same for the links that `matched(link)` picks; the others keep their values.
+    // The same for the links and seen nodes that `matched(node)` picks (the others keep their
+    // values). A polygon's pixels are its seen nodes' pixel sums (times pixel_scale, as
+    // link_node takes them), not its links' ff_pixel: where GL's LOD showed a node and all its
+    // children, the node's pixels have no link of their own (split() finds no filler).
     template <class Matched>
-    void match_pixel_totals(std::vector<Link>& links, Matched&& matched) const {
+    void match_pixel_totals(std::vector<Link>& links, double pixel_scale, Matched&& matched) const {
         struct Totals {
             double linked = 0, pixels = 0;
         };
         std::unordered_map<std::uint32_t, Totals> totals;
+        for (const PatchAddress& a : touched_)
+            if (matched(a))
+                totals[a.polygon].pixels +=
+                    double(pixel_sum_[node_id(a.polygon, a.level, a.index)]) * pixel_scale;
         std::vector<char> picked(links.size());
         for (std::size_t i = 0; i < links.size(); ++i) {
             const Link& l = links[i];
-            picked[i] = matched(l);
+            picked[i] = matched(l.receiver);
             if (!picked[i]) continue;
             const double a = area(l.receiver.polygon, l.receiver.level, l.receiver.index);
-            Totals& t = totals[l.receiver.polygon];
-            t.linked += double(l.ff) * a;
-            t.pixels += double(l.ff_pixel) * a;
+            totals[l.receiver.polygon].linked += double(l.ff) * a;
         }
         for (std::size_t i = 0; i < links.size(); ++i) {
             if (!picked[i]) continue;
@@ -235,6 +240,16 @@ class HemicubeProvider final : public FormFactorProvider {
             if (t.linked > 0) links[i].ff = float(double(links[i].ff) * (t.pixels / t.linked));
         }
         std::erase_if(links, [](const Link& l) { return !(l.ff > 0); });
+    }
+
+    // match_pixel_totals for the links and seen nodes farther than `near` from a cluster's
+    // eye (their centres); nearer ones keep their values.
+    void match_far_pixel_totals(std::vector<Link>& links, const dvec3& eye, double near,
+                                double pixel_scale) const {
+        match_pixel_totals(links, pixel_scale, [&](const PatchAddress& a) {
+            const dvec3 x = patch_centre(scene_->polygons[a.polygon], a.level, a.index);
+            return glm::length(x - eye) > near;
+        });
     }
 
     bool can_shoot_clusters() const override { return true; }
@@ -264,15 +279,11 @@ class HemicubeProvider final : public FormFactorProvider {
             // their pixels). Nearer, the rectangle's analytic values stand: one eye for the whole
             // rectangle sees the surfaces beside it unlike its polygons do (the office's flat
             // clusters: there the pixels put 4 times the analytic light).
-            if (mode_ == Mode::Hybrid) {
-                const dvec3 eye = flat.geometry.centre;
-                const double near = 2 * reach(flat.geometry.corners, flat.geometry.count, eye);
-                match_pixel_totals(links, [&](const Link& l) {
-                    const PatchAddress& a = l.receiver;
-                    return glm::length(patch_centre(scene_->polygons[a.polygon], a.level, a.index) -
-                                       eye) > near;
-                });
-            }
+            if (mode_ == Mode::Hybrid)
+                match_far_pixel_totals(
+                    links, flat.geometry.centre,
+                    2 * reach(flat.geometry.corners, flat.geometry.count, flat.geometry.centre),
+                    flat.geometry.area);
             // The light the backs of polygons would take (the rectangle's centre sees them where
             // the cluster's polygons would not) goes to what it sees instead: energy is kept,
             // and the solver counts the share as misplaced.
@@ -294,6 +305,9 @@ class HemicubeProvider final : public FormFactorProvider {
         shoot_sphere(s, res, links);
         hidden_ = nullptr;
         renderer_->set_hidden({});
+        // Beyond twice its radius, as a flat cluster's (above): the analytic values are the
+        // point's kernel at node centres, each with its own visibility test.
+        if (mode_ == Mode::Hybrid) match_far_pixel_totals(links, c.centre, 2 * c.radius, 1.0);
         // The light the backs of polygons would take goes to what the point sees instead (see
         // the flat case).
         const float keep = float(1.0 / std::max(1.0 - backface_, 0.05));
