@@ -370,6 +370,41 @@ TEST(SplitIntersections, MeetingLineUnderATenthOfTheLongestEdgeIsNotCut) {
     EXPECT_NEAR(area_of(s, "post"), 0.2, 1e-12);
 }
 
+// A desk's leg, as modelled in the office glb: a closed slab 0.1 thick and 2 long sunk 5 cm
+// through a 4 x 4 floor, each end face two triangles. The long sides' meeting lines (2, over a
+// tenth of the floor's longest edge, 0.4) cut the floor into three strips, along their whole
+// lines; the ends' (0.1, in two pieces, one from each triangle, taken as one segment) are
+// short, and cut only the piece that they cross from side to side: the middle strip, so that
+// the leg's footprint is a polygon of its own (the strip as one polygon reached out from
+// under the leg, and its leaves carried the light of the floor in front into the leg). The
+// rest of the floor is not cut along the ends' lines.
+TEST(SplitIntersections, ShortMeetingLineCutsThePieceItCrosses) {
+    Builder b;
+    b.floor(-2, 2, -2, 2, 0, "floor");
+    const double x0 = 0.2, x1 = 0.3, y0 = -0.05, y1 = 1, z0 = -1, z1 = 1;
+    b.quad({{x0, y1, z0}, {x0, y1, z1}, {x1, y1, z1}, {x1, y1, z0}}, "leg"); // top
+    b.quad({{x0, y0, z0}, {x1, y0, z0}, {x1, y0, z1}, {x0, y0, z1}}, "leg"); // bottom
+    b.quad({{x0, y0, z0}, {x0, y0, z1}, {x0, y1, z1}, {x0, y1, z0}}, "leg"); // side -x
+    b.quad({{x1, y0, z0}, {x1, y1, z0}, {x1, y1, z1}, {x1, y0, z1}}, "leg"); // side +x
+    // The ends, facing -z and +z, each split along a diagonal.
+    b.quad({{x0, y0, z0}, {x0, y1, z0}, {x1, y1, z0}}, "leg");
+    b.quad({{x0, y0, z0}, {x1, y1, z0}, {x1, y0, z0}}, "leg");
+    b.quad({{x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}}, "leg");
+    b.quad({{x0, y0, z1}, {x1, y1, z1}, {x0, y1, z1}}, "leg");
+    Scene s = b.scene;
+    split_intersections(s);
+    EXPECT_NEAR(area_of(s, "floor"), 16.0, 1e-12);
+    EXPECT_EQ(count_in(s, "floor"), 5u) << "two strips beside, three pieces of the middle one";
+    const auto under = find_surface(s, {0.25, 0, 0.3}, {0, 1, 0}, 1e-9);
+    ASSERT_TRUE(under.has_value());
+    EXPECT_NEAR(s.polygons[under->polygon].area, (x1 - x0) * (z1 - z0), 1e-12) << "the footprint";
+    for (double z : {-1.5, 1.5}) {
+        const auto beyond = find_surface(s, {0.25, 0, z}, {0, 1, 0}, 1e-9);
+        ASSERT_TRUE(beyond.has_value());
+        EXPECT_NEAR(s.polygons[beyond->polygon].area, (x1 - x0) * 1.0, 1e-12) << "z " << z;
+    }
+}
+
 // 20 walls through a 21 x 12 floor, each crossing its full depth (a meeting line of 12, over
 // a tenth of the longest edge, 2.1): at most 16 cuts, so 17 pieces, not 21.
 TEST(SplitIntersections, AtMostSixteenCutsAPolygon) {

@@ -18,10 +18,15 @@ namespace hemirad {
 
 namespace {
 
-/// A cut: the line through `point` along `dir` (unit) in a polygon's plane.
+/// A cut: the line through `point` along `dir` (unit) in a polygon's plane; the meeting
+/// segment runs from `point` to point + length dir.
 struct Cut {
     dvec3 point, dir;
     double length; ///< of the meeting segment within the polygon (the longest cuts are kept)
+    /// Under a tenth of the polygon's size: it cuts only a piece that the meeting segment
+    /// crosses from side to side (a post's footprint left as a strip by the cuts of its two
+    /// long sides), not the whole polygon along its line.
+    bool short_one = false;
 };
 
 struct Box {
@@ -107,6 +112,27 @@ double area_of(const std::vector<dvec3>& c, const dvec3& n) {
     return 0.5 * std::abs(glm::dot(s, n));
 }
 
+// Whether the meeting segment of a short cut crosses the convex piece `c` (in a plane of
+// normal n) from side to side: the piece's chord along the cut's line lies within the segment,
+// to a hundredth of the chord (the segment's ends are where the other polygon's sides meet
+// this plane, the chord's where the cuts of those sides ended the piece).
+bool crosses_piece(const std::vector<dvec3>& c, const dvec3& n, const Cut& cut) {
+    const dvec3 side = glm::cross(cut.dir, n);
+    double t0 = 1e300, t1 = -1e300;
+    for (std::size_t k = 0; k < c.size(); ++k) {
+        const std::size_t j = (k + 1) % c.size();
+        const double dk = glm::dot(c[k] - cut.point, side), dj = glm::dot(c[j] - cut.point, side);
+        if ((dk > 0 && dj < 0) || (dk < 0 && dj > 0)) {
+            const double t = glm::dot(c[k] + (c[j] - c[k]) * (dk / (dk - dj)) - cut.point, cut.dir);
+            t0 = std::min(t0, t), t1 = std::max(t1, t);
+        }
+    }
+    const double chord = t1 - t0;
+    if (!(chord > 0)) return false;
+    const double slack = 0.01 * chord;
+    return t0 >= -slack && t1 <= cut.length + slack;
+}
+
 // Splits the convex piece `c` (in a plane of normal n) by the line: the two sides, in order,
 // when each keeps at least `min_share` of its area; else false (the piece stays whole).
 bool split_piece(const std::vector<dvec3>& c, const dvec3& n, const Cut& cut, double min_share,
@@ -159,14 +185,33 @@ SplitStats split_intersections(Scene& scene) {
         const Polygon& P = scene.polygons[p];
         Cut c;
         if (!meeting(P, scene.polygons[q], eps, c)) return;
-        // Where another object's corner or thin edge barely enters, a cut would only add
-        // polygons: a meeting line of at least a tenth of the polygon's size is cut.
-        if (c.length < 0.1 * longest_edge(P)) return;
-        for (const Cut& o : cuts[p]) // the same line already (a box's face and its neighbour)
-            if (std::abs(glm::dot(o.dir, c.dir)) > 1 - 1e-9 &&
-                glm::length(glm::cross(c.point - o.point, o.dir)) <= eps) {
+        // Where another object's corner or thin edge barely enters, a cut along the whole
+        // line would only add polygons: a meeting line of at least a tenth of the polygon's
+        // size is cut so; a shorter one only where it crosses a piece (crosses_piece).
+        const double tenth = 0.1 * longest_edge(P);
+        c.short_one = c.length < tenth;
+        for (Cut& o : cuts[p]) {
+            // The same line already (a box's face and its neighbour, the two triangles of a
+            // quad): where the segments meet or overlap they become one (a post's side made
+            // of two triangles meets the floor in two pieces of one segment).
+            const double along = glm::dot(o.dir, c.dir);
+            if (std::abs(along) <= 1 - 1e-9 ||
+                glm::length(glm::cross(c.point - o.point, o.dir)) > eps)
+                continue;
+            const double a = glm::dot(c.point - o.point, o.dir), b = a + c.length * along;
+            const double lo = std::min(a, b), hi = std::max(a, b);
+            if (!o.short_one) return; // the whole line is cut already
+            if (!c.short_one) {       // the whole line now
+                o = c;
                 return;
             }
+            if (lo > o.length + eps || hi < -eps) continue; // apart on the line
+            const double from = std::min(0.0, lo), to = std::max(o.length, hi);
+            o.point += from * o.dir;
+            o.length = to - from;
+            o.short_one = o.length < tenth;
+            return;
+        }
         cuts[p].push_back(c);
     };
     for (std::uint32_t i : order) {
@@ -182,8 +227,10 @@ SplitStats split_intersections(Scene& scene) {
         }
         active.push_back(i);
     }
-    // Cut, at most kMaxCuts lines a polygon (the longest meetings first).
+    // Cut, at most kMaxCuts lines a polygon (the longest meetings first) and as many short
+    // ones after them.
     constexpr std::size_t kMaxCuts = 16;
+    constexpr double kShortShare = 0.05;
     Scene out = scene;
     out.polygons.clear();
     out.texcoords.clear();
@@ -194,14 +241,23 @@ SplitStats split_intersections(Scene& scene) {
         std::vector<Cut>& cs = cuts[p];
         std::vector<std::vector<dvec3>> pieces{{P.v.begin(), P.v.begin() + P.count}};
         if (!cs.empty()) {
-            std::sort(cs.begin(), cs.end(),
-                      [](const Cut& a, const Cut& b) { return a.length > b.length; });
-            if (cs.size() > kMaxCuts) cs.resize(kMaxCuts);
+            // Long cuts first (longest first), then short ones (longest first).
+            std::sort(cs.begin(), cs.end(), [](const Cut& a, const Cut& b) {
+                return a.short_one != b.short_one ? !a.short_one : a.length > b.length;
+            });
+            const auto first_short =
+                std::find_if(cs.begin(), cs.end(), [](const Cut& c) { return c.short_one; });
+            const std::size_t long_ones = std::size_t(first_short - cs.begin());
+            if (long_ones > kMaxCuts) cs.erase(cs.begin() + kMaxCuts, first_short);
+            if (cs.size() > 2 * kMaxCuts) cs.resize(2 * kMaxCuts);
             std::vector<dvec3> a, b;
             for (const Cut& c : cs) {
                 std::vector<std::vector<dvec3>> next;
                 for (const std::vector<dvec3>& piece : pieces) {
-                    if (split_piece(piece, P.normal, c, 1e-3, a, b)) {
+                    // A short cut leaves no sliver (a millimetre between a wall and the
+                    // back of a desk's leg): each side keeps a twentieth of the piece.
+                    if ((!c.short_one || crosses_piece(piece, P.normal, c)) &&
+                        split_piece(piece, P.normal, c, c.short_one ? kShortShare : 1e-3, a, b)) {
                         next.push_back(a);
                         next.push_back(b);
                     } else {
