@@ -183,4 +183,44 @@ TEST(ClusterCentre, InsideAWallSlabIsInAThinGap) {
     EXPECT_FALSE(in_thin_gap(s, {0, 1, 2, 3, 4, 5}, {4.7, 1.5, 1.5}, 0.5)) << "two-sided room";
 }
 
+// light_off_centre, on the office glb's case: a bar of an LED light (1.4 x 86 cm, at x = 0)
+// in a cluster with two faces of a bookshelf 1.5 m away (1.3 x 0.62 m, at x = 1.5). Their
+// area-weighted centre lies 1 cm from the shelf (radius 2.12 m, to the bar's far corner).
+// Lit alike per unit area, the light leaves around that centre; with the bar's power 50
+// times each face's, its centroid is 1.94 m away, 0.92 of the radius: off centre at half the
+// radius, not at 0.95 of it. Zero power anywhere is never off centre.
+TEST(ClusterCentre, LightAwayFromTheCentreIsOffCentre) {
+    Scene s;
+    s.materials.push_back({"grey", dvec3(0.5), dvec3(0.0)});
+    s.groups.push_back("g");
+    add_polygon(s, {{0, 0.05, -2.9}, {0, 0.05, -2.886}, {0, 0.91, -2.886}, {0, 0.91, -2.9}}, 0, 0);
+    add_polygon(s, {{1.5, 0.1, -3.6}, {1.5, 0.1, -4.9}, {1.5, 0.72, -4.9}, {1.5, 0.72, -3.6}}, 0,
+                0);
+    add_polygon(s, {{1.5, 0.72, -3.6}, {1.5, 0.72, -4.9}, {1.5, 1.34, -4.9}, {1.5, 1.34, -3.6}}, 0,
+                0);
+    finish_scene(s, "bar and shelf");
+    ASSERT_EQ(s.polygons.size(), 3u);
+    const std::vector<std::uint32_t> all = {0, 1, 2};
+    dvec3 centre(0.0);
+    double area = 0;
+    for (std::uint32_t p : all) {
+        centre += s.polygons[p].area * s.polygons[p].centroid();
+        area += s.polygons[p].area;
+    }
+    centre /= area;
+    double radius = 0;
+    for (std::uint32_t p : all)
+        for (int k = 0; k < s.polygons[p].count; ++k)
+            radius = std::max(radius, glm::length(s.polygons[p].v[std::size_t(k)] - centre));
+    ASSERT_LT(std::abs(centre.x - 1.5), 0.02) << "the shelf's area dominates";
+    std::vector<double> alike;
+    for (std::uint32_t p : all) alike.push_back(s.polygons[p].area); // the same exitance
+    EXPECT_FALSE(light_off_centre(s, all, alike, centre, 0.5 * radius));
+    const std::vector<double> bar_bright = {50, 1, 1};
+    EXPECT_TRUE(light_off_centre(s, all, bar_bright, centre, 0.5 * radius));
+    EXPECT_FALSE(light_off_centre(s, all, bar_bright, centre, 0.95 * radius)) << "0.92 R";
+    EXPECT_FALSE(light_off_centre(s, all, {0, 0, 0}, centre, 0.5 * radius)) << "no light";
+    EXPECT_FALSE(light_off_centre(s, all, {0, 1, 1}, centre, 0.5 * radius)) << "the shelf only";
+}
+
 } // namespace

@@ -103,4 +103,16 @@ bool in_thin_gap(const Scene& scene, const std::vector<std::uint32_t>& polygons,
     return false;
 }
 
+bool light_off_centre(const Scene& scene, const std::vector<std::uint32_t>& polygons,
+                      const std::vector<double>& power, const dvec3& centre, double max_offset) {
+    dvec3 sum(0.0);
+    double weight = 0;
+    for (std::size_t k = 0; k < polygons.size() && k < power.size(); ++k) {
+        if (!(power[k] > 0)) continue;
+        sum += power[k] * scene.polygons[polygons[k]].centroid();
+        weight += power[k];
+    }
+    return weight > 0 && glm::length(sum / weight - centre) > max_offset;
+}
+
 } // namespace hemirad

@@ -62,4 +62,11 @@ class ClusterTree {
 bool in_thin_gap(const Scene& scene, const std::vector<std::uint32_t>& polygons, const dvec3& p,
                  double max_gap);
 
+/// Whether the light of `polygons` leaves from away from `centre`: the centroid of their
+/// centroids, weighted by `power` (one value each, >= 0), lies farther than `max_offset` from
+/// it. A cluster shooting from `centre` would send that light from where it does not leave.
+/// False when every power is 0.
+bool light_off_centre(const Scene& scene, const std::vector<std::uint32_t>& polygons,
+                      const std::vector<double>& power, const dvec3& centre, double max_offset);
+
 } // namespace hemirad
