@@ -198,13 +198,13 @@ SplitStats split_intersections(Scene& scene) {
             if (std::abs(along) <= 1 - 1e-9 ||
                 glm::length(glm::cross(c.point - o.point, o.dir)) > eps)
                 continue;
-            const double a = glm::dot(c.point - o.point, o.dir), b = a + c.length * along;
-            const double lo = std::min(a, b), hi = std::max(a, b);
             if (!o.short_one) return; // the whole line is cut already
             if (!c.short_one) {       // the whole line now
                 o = c;
                 return;
             }
+            const double a = glm::dot(c.point - o.point, o.dir), b = a + c.length * along;
+            const double lo = std::min(a, b), hi = std::max(a, b);
             if (lo > o.length + eps || hi < -eps) continue; // apart on the line
             const double from = std::min(0.0, lo), to = std::max(o.length, hi);
             o.point += from * o.dir;
@@ -227,8 +227,8 @@ SplitStats split_intersections(Scene& scene) {
         }
         active.push_back(i);
     }
-    // Cut, at most kMaxCuts lines a polygon (the longest meetings first) and as many short
-    // ones after them.
+    // Cut, at most kMaxCuts whole lines a polygon (the longest meetings first), then short
+    // ones, at most 2 kMaxCuts cuts in all.
     constexpr std::size_t kMaxCuts = 16;
     constexpr double kShortShare = 0.05;
     Scene out = scene;
