@@ -1,12 +1,16 @@
 // Visibility read from a rendered hemicube's patch IDs (hemicube_visibility.h).
 #include "gpu/hemicube_visibility.h"
 
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <numeric>
+#include <tuple>
 #include <vector>
 
 #include "core/parallel.h"
+#include "gpu/pixel_runs.h"
 
 namespace hemirad::gpu {
 
@@ -93,46 +97,74 @@ std::size_t fill_cracks(const Scene& scene, const HemicubeLayout& L, const Hemic
             return std::size_t(face.y + j) * std::size_t(L.width) + std::size_t(face.x + i);
         };
         // The IDs apart, 4 bytes a pixel: the searches compare neighbours' IDs in a quarter
-        // of the memory.
-        for (int j = 0; j < face.h; ++j)
+        // of the memory, 64 at a time. A row's are taken as the row below it is searched.
+        const auto copy_row = [&](int j) {
             for (int i = 0; i < face.w; ++i) ids[at(i, j)] = rgba[4 * at(i, j) + 2];
+        };
         // Pixel a = (i, j) shows P, its neighbour b shows Q: if the ray to the point a shows,
         // nudged a hundredth of a pixel into P, crosses Q (a ray that meets P on an edge
         // shared with nearer polygons, a face meeting the floor from below hit on the meeting
         // line, shows what lies just beside it), a takes b's value.
         const auto fill = [&](std::size_t a, int i, int j, std::size_t b) {
             const long p = shown_polygon(rgba, a), q = shown_polygon(rgba, b);
-            if (p < 0 || q < 0 || p == q) return;
+            if (p < 0 || q < 0 || p == q) return false;
             const dvec3 u = pixel_ray(L, frame, f, i, j);
             const Polygon& P = scene.polygons[std::size_t(p)];
             const double tp = plane_hit(P, eye, u);
-            if (!(tp > 0)) return;
+            if (!(tp > 0)) return false;
             const double tol = 0.01 * pixel * tp * glm::length(u);
             const Polygon& Q = scene.polygons[std::size_t(q)];
-            if (!may_cross_before(P, Q, eye, tp * u, 2 * tol)) return;
+            if (!may_cross_before(P, Q, eye, tp * u, 2 * tol)) return false;
             dvec3 x = eye + tp * u;
             const dvec3 inward = P.centroid() - x;
             const double l = glm::length(inward);
             if (l > tol) x += inward * (tol / l);
             const dvec3 d = x - eye;
             const double tq = plane_hit(Q, eye, d);
-            if (!(tq > 0 && tq < 1 - 1e-6) || !within(Q, eye + tq * d, tol)) return;
+            if (!(tq > 0 && tq < 1 - 1e-6) || !within(Q, eye + tq * d, tol)) return false;
             for (int c = 0; c < 4; ++c) rgba[4 * a + c] = rgba[4 * b + c];
             ids[a] = ids[b];
             ++filled;
+            return true;
         };
-        for (int j = 0; j < face.h; ++j)
-            for (int i = 0; i < face.w; ++i) {
-                const std::size_t a = at(i, j);
-                if (i + 1 < face.w) {
-                    const std::size_t b = a + 1;
-                    if (ids[a] != ids[b]) fill(a, i, j, b), fill(b, i + 1, j, a);
-                }
-                if (j + 1 < face.h) {
+        // Pixel by pixel, each with its right neighbour, then the one above; a filled pixel
+        // changes the IDs that the pairs after it compare, so the block's are compared again.
+        if (face.h > 0) copy_row(0);
+        for (int j = 0; j < face.h; ++j) {
+            const bool top = j + 1 == face.h;
+            if (!top) copy_row(j + 1);
+            const std::size_t row = at(0, j);
+            for (int i0 = 0; i0 < face.w; i0 += 64) {
+                const std::size_t a0 = row + std::size_t(i0);
+                const std::size_t n = std::size_t(std::min(64, face.w - i0));
+                const std::size_t n_right = n - (i0 + 64 >= face.w); // the row's last: none
+                const auto masks = [&](std::size_t from) {
+                    const std::uint64_t keep = ~std::uint64_t(0) << from;
+                    return std::pair{unequal_ids(&ids[a0], &ids[a0 + 1], n_right) & keep,
+                                     top ? 0 : unequal_ids(&ids[a0], &ids[a0 + L.width], n) & keep};
+                };
+                auto [right, up] = masks(0);
+                while (right | up) {
+                    const int k = std::countr_zero(right | up);
+                    const std::uint64_t bit = std::uint64_t(1) << k;
+                    const int i = i0 + k;
+                    const std::size_t a = a0 + std::size_t(k);
                     const std::size_t b = a + std::size_t(L.width);
-                    if (ids[a] != ids[b]) fill(a, i, j, b), fill(b, i, j + 1, a);
+                    bool changed = false;
+                    if (right & bit) changed = fill(a, i, j, a + 1) | fill(a + 1, i + 1, j, a);
+                    // (a filled pixel has a new ID to compare with the one above)
+                    if (changed ? !top && ids[a] != ids[b] : (up & bit) != 0)
+                        changed |= fill(a, i, j, b) | fill(b, i, j + 1, a);
+                    if (k == 63) break;
+                    if (changed) {
+                        std::tie(right, up) = masks(std::size_t(k) + 1);
+                    } else {
+                        right &= ~(bit | (bit - 1));
+                        up &= ~(bit | (bit - 1));
+                    }
                 }
             }
+        }
     });
     return std::accumulate(filled_in.begin(), filled_in.end(), std::size_t(0));
 }

@@ -4,10 +4,13 @@
 // must not reach what the shooter cannot see, and a form-factor row must not exceed 1).
 #pragma once
 
+#include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
 #include "gpu/hemicube.h"
+#include "gpu/pixel_runs.h"
 
 namespace hemirad::gpu {
 
@@ -39,11 +42,11 @@ std::size_t fill_cracks(const Scene& scene, const HemicubeLayout& layout,
 class HemicubeVisibility {
   public:
     /// The hemicube `rgba` (IDs as in FormFactorProvider::HemicubeImage) rendered with
-    /// `layout` from the shooter whose frame is `frame`, its eye at `eye`. Keeps pointers: all
-    /// must outlive this object. `ids`, if given, holds rgba's third channel alone (as
-    /// fill_cracks leaves it): the searches compare neighbours there.
+    /// `layout` from the shooter whose frame is `frame`, its eye at `eye`; `ids` holds rgba's
+    /// third channel alone (as fill_cracks leaves it), where the searches compare neighbours.
+    /// Keeps pointers: all must outlive this object.
     HemicubeVisibility(const Scene& scene, const HemicubeLayout& layout, const HemicubeFrame& frame,
-                       const float* rgba, const dvec3& eye, const float* ids = nullptr);
+                       const float* rgba, const dvec3& eye, const float* ids);
 
     /// Is point x, on polygon `own`, seen from the eye? It is if the pixel its direction
     /// falls in shows `own`, nothing, or a polygon that the segment from the eye to x does
@@ -81,32 +84,39 @@ class HemicubeVisibility {
     const HemicubeLayout* layout_;
     HemicubeFrame frame_;
     const float* rgba_;
-    const float* ids_; ///< rgba_'s third channel apart, or null
+    const float* ids_; ///< rgba_'s third channel apart
     dvec3 eye_;
 };
 
 template <class Mark> void HemicubeVisibility::occlusion_edges(int f, Mark mark) const {
     const HemicubeLayout& L = *layout_;
-    {
-        const HemicubeLayout::Face& face = L.faces[f];
-        const auto at = [&](int i, int j) {
-            return std::size_t(face.y + j) * std::size_t(L.width) + std::size_t(face.x + i);
-        };
-        const auto test = [&](int i0, int j0, int i1, int j1) {
-            const std::size_t a = at(i0, j0), b = at(i1, j1);
-            if (ids_ ? ids_[a] == ids_[b] : rgba_[4 * a + 2] == rgba_[4 * b + 2])
-                return; // the same polygon, same side
-            const long pa = shown(a), pb = shown(b);
-            if (pa == pb) return;
-            // Each way: a front of P at one pixel, something else at its neighbour.
-            if (pa >= 0 && rgba_[4 * a + 2] > 0 && hides(f, i1, j1, std::uint32_t(pa))) mark(a);
-            if (pb >= 0 && rgba_[4 * b + 2] > 0 && hides(f, i0, j0, std::uint32_t(pb))) mark(b);
-        };
-        for (int j = 0; j < face.h; ++j)
-            for (int i = 0; i < face.w; ++i) {
-                if (i + 1 < face.w) test(i, j, i + 1, j);
-                if (j + 1 < face.h) test(i, j, i, j + 1);
+    const HemicubeLayout::Face& face = L.faces[f];
+    const std::size_t width = std::size_t(L.width);
+    const auto test = [&](std::size_t a, int i0, int j0, std::size_t b, int i1, int j1) {
+        const long pa = shown(a), pb = shown(b);
+        if (pa == pb) return;
+        // Each way: a front of P at one pixel, something else at its neighbour.
+        if (pa >= 0 && rgba_[4 * a + 2] > 0 && hides(f, i1, j1, std::uint32_t(pa))) mark(a);
+        if (pb >= 0 && rgba_[4 * b + 2] > 0 && hides(f, i0, j0, std::uint32_t(pb))) mark(b);
+    };
+    // Neighbours with the same ID (the same polygon, same side) are passed over 64 at a time.
+    for (int j = 0; j < face.h; ++j) {
+        const std::size_t row = std::size_t(face.y + j) * width + std::size_t(face.x);
+        for (int i0 = 0; i0 < face.w; i0 += 64) {
+            const std::size_t n = std::size_t(std::min(64, face.w - i0));
+            const std::size_t a0 = row + std::size_t(i0);
+            const std::size_t n_right = n - (i0 + 64 >= face.w); // the row's last: none
+            const std::uint64_t right = unequal_ids(ids_ + a0, ids_ + a0 + 1, n_right);
+            const std::uint64_t up =
+                j + 1 < face.h ? unequal_ids(ids_ + a0, ids_ + a0 + width, n) : 0;
+            for (std::uint64_t m = right | up; m; m &= m - 1) {
+                const int k = std::countr_zero(m);
+                const int i = i0 + k;
+                const std::size_t a = a0 + std::size_t(k);
+                if (right >> k & 1) test(a, i, j, a + 1, i + 1, j);
+                if (up >> k & 1) test(a, i, j, a + width, i, j + 1);
             }
+        }
     }
 }
 

@@ -40,4 +40,17 @@ template <class Run> void for_each_pixel_run(const float* rgba, std::size_t n, R
     if (n > 0) run(first, n - first);
 }
 
+/// Bit k set where the IDs a[k] and b[k] differ, for k < n (n <= 64): IDs are whole numbers,
+/// whose equal values have equal bits (no -0, no NaN), compared as 32-bit words.
+inline std::uint64_t unequal_ids(const float* a, const float* b, std::size_t n) {
+    std::uint64_t mask = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        std::uint32_t x, y;
+        std::memcpy(&x, a + k, 4);
+        std::memcpy(&y, b + k, 4);
+        mask |= std::uint64_t(x != y) << k;
+    }
+    return mask;
+}
+
 } // namespace hemirad::gpu
