@@ -74,7 +74,7 @@ TEST(UnequalIds, MatchAPlainComparison) {
     for (std::size_t n = 0; n <= 64; ++n) {
         for (std::size_t k = 0; k < 64; ++k) {
             state = state * 6364136223846793005ull + 1442695040888963407ull;
-            a[k] = float(state >> 62);         // 0..3
+            a[k] = float(state >> 62);        // 0..3
             b[k] = float((state >> 40) & 3u); // 0..3
         }
         std::uint64_t expected = 0;
@@ -144,8 +144,8 @@ TEST(FillCracks, ACrackAlongASharedEdgeIsFilled) {
             top.show(i, j, i < crack ? 1u : i == crack ? 0u : 2u);
     const std::vector<float> before = top.rgba;
     std::vector<float> ids;
-    const std::size_t filled = gpu::fill_cracks(scene, top.layout, top.frame, top.rgba.data(),
-                                                dvec3(0.0), ids);
+    const std::size_t filled =
+        gpu::fill_cracks(scene, top.layout, top.frame, top.rgba.data(), dvec3(0.0), ids);
     EXPECT_EQ(filled, std::size_t(top.face().h));
     for (int j = 0; j < top.face().h; ++j)
         for (int i = 0; i < top.face().w; ++i) {
