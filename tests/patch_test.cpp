@@ -2,6 +2,7 @@
 // areas, point location, neighbours) — the same addressing the GPU's patch-ID texture uses.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 #include "hemirad/patch.h"
@@ -60,6 +61,29 @@ TEST_P(PatchTreeTest, ChildAreasSumToParentAndLevelsToPolygon) {
             EXPECT_NEAR(children, a, 1e-12 * p.area);
         }
         EXPECT_NEAR(level_sum, p.area, 1e-12 * p.area);
+    }
+}
+
+// patch_area() is the area of the patch's corners (a planar polygon's shoelace sum, computed
+// here), and the patches of a quad that is no parallelogram differ in area: a mean over them
+// must weight them (the provider's near-receiver means).
+TEST_P(PatchTreeTest, PatchAreaIsTheAreaOfItsCorners) {
+    const Polygon p = poly();
+    for (std::uint32_t level = 0; level < 4; ++level) {
+        double smallest = 1e300, largest = 0;
+        for (std::uint32_t i = 0; i < (1u << (2 * level)); ++i) {
+            const PatchGeometry g = patch_geometry(p, level, i);
+            dvec3 twice(0.0);
+            for (int k = 0; k < g.count; ++k)
+                twice += glm::cross(g.corners[std::size_t(k)],
+                                    g.corners[std::size_t((k + 1) % g.count)]);
+            const double a = patch_area(p, level, i);
+            EXPECT_NEAR(a, 0.5 * glm::length(twice), 1e-12 * p.area) << level << "/" << i;
+            EXPECT_EQ(a, g.area);
+            smallest = std::min(smallest, a);
+            largest = std::max(largest, a);
+        }
+        if (level > 0 && !GetParam()) EXPECT_GT(largest / smallest, 1.1) << "level " << level;
     }
 }
 

@@ -57,6 +57,10 @@ HEMIRAD_API dvec3 patch_centre(const Polygon& polygon, std::uint32_t level, std:
 /// Maps parameter (u,v) to a point on the polygon (bilinear for quads, affine for triangles).
 HEMIRAD_API dvec3 polygon_point(const Polygon& polygon, double u, double v);
 
+/// The area of patch `index` of `level` (patch_geometry()'s, without its corners): a quad's
+/// patches differ in area where the quad is no parallelogram; a triangle's are equal.
+HEMIRAD_API double patch_area(const Polygon& polygon, std::uint32_t level, std::uint32_t index);
+
 /// Index of the patch of `level` that contains parameter point (u,v) (clamped into range).
 HEMIRAD_API std::uint32_t patch_at(const Polygon& polygon, std::uint32_t level, double u, double v);
 

@@ -700,11 +700,18 @@ class HemicubeProvider final : public FormFactorProvider {
         const double ratio = depth < kMeanLevels ? kMeanRatio : kEdgeRatio;
         if (depth >= levels || small_for_distance(s, centre, size, ratio))
             return value >= 0 ? value : analytic_at(s, centre, poly.normal);
-        double total = 0;
-        for (std::uint32_t c : patch_children(poly.is_triangle(), level, index))
-            total += part_mean(s, poly, level + 1, c, patch_centre(poly, level + 1, c), 0.5 * size,
-                               levels, depth + 1, -1.0);
-        return 0.25 * total;
+        // The parts' means weighted by their areas: a quad that is no parallelogram has parts
+        // of unequal area (the office glb's wall beside an LED bar, a trapezoid whose short
+        // side meets the bar: its nodes read 6.5 % high with equal weights, the bar's rows
+        // up to 1.05; tests/hemicube_gl_test.cpp, NearReceivers).
+        double total = 0, weights = 0;
+        for (std::uint32_t c : patch_children(poly.is_triangle(), level, index)) {
+            const double w = patch_area(poly, level + 1, c);
+            total += w * part_mean(s, poly, level + 1, c, patch_centre(poly, level + 1, c),
+                                   0.5 * size, levels, depth + 1, -1.0);
+            weights += w;
+        }
+        return weights > 0 ? total / weights : 0.0;
     }
 
     // The distance from x to a patch shooter's polygon [unit] (its corners: convex, either

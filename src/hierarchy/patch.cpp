@@ -78,13 +78,20 @@ PatchGeometry patch_geometry(const Polygon& p, std::uint32_t level, std::uint32_
     g.corners[2] = polygon_point(p, u0 + h, v0 + h);
     g.corners[3] = polygon_point(p, u0, v0 + h);
     g.centre = polygon_point(p, u0 + 0.5 * h, v0 + 0.5 * h);
+    g.area = patch_area(p, level, index);
+    return g;
+}
+
+double patch_area(const Polygon& p, std::uint32_t level, std::uint32_t index) {
+    const std::uint32_t n = 1u << level;
+    const double h = 1.0 / n;
+    if (p.is_triangle()) return p.area / double(n) / double(n);
     // For a planar quad the Jacobian |dP/du x dP/dv| is affine in (u,v), so its value at the
     // patch centre times the parameter area is the exact area (and areas add up exactly).
-    const double uc = u0 + 0.5 * h, vc = v0 + 0.5 * h;
+    const double uc = (index % n + 0.5) * h, vc = (index / n + 0.5) * h;
     const dvec3 du = (1 - vc) * (p.v[1] - p.v[0]) + vc * (p.v[2] - p.v[3]);
     const dvec3 dv = (1 - uc) * (p.v[3] - p.v[0]) + uc * (p.v[2] - p.v[1]);
-    g.area = glm::length(glm::cross(du, dv)) * h * h;
-    return g;
+    return glm::length(glm::cross(du, dv)) * h * h;
 }
 
 dvec3 patch_centre(const Polygon& p, std::uint32_t level, std::uint32_t index) {
