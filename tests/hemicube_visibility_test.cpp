@@ -157,3 +157,39 @@ TEST(FillCracks, ACrackAlongASharedEdgeIsFilled) {
         }
     EXPECT_EQ(ids, top.ids()); // the IDs apart, after the filling
 }
+
+// A point on a polygon smaller than a pixel (linked whole where the depth map shows it seen),
+// behind a panel whose edge passes a third of a pixel from the centre of the point's pixel:
+// the pixel's centre ray passes beside the panel and shows nothing, the point's own ray
+// crosses the panel. Hidden: the panel is shown in the pixels around. A point as far from
+// the panel is seen.
+TEST(VisibleInDepthMap, NothingBesideASilhouetteDoesNotSeeThroughIt) {
+    TopFace top;
+    const int column = 100, row = 80;
+    const dvec3 centre_ray = top.at_height_1(column, row);
+    const double step = top.at_height_1(column + 1, row).x - centre_ray.x; // a pixel at z = 1
+    const double edge = centre_ray.x + 0.3 * step; // the panel: from here away from the centre
+    Scene scene = scene_with_material();
+    if (step > 0)
+        add_ceiling(scene, edge, 50, -50, 50, 1); // 0: the panel
+    else
+        add_ceiling(scene, -50, edge, -50, 50, 1);
+    // 1 and 2: small polygons at z = 2, around points whose rays cross z = 1 at 0.4 pixel
+    // from the column's centre (0.1 pixel inside the panel) and ten pixels away from it.
+    const dvec3 hidden = 2.0 * dvec3(centre_ray.x + 0.4 * step, centre_ray.y, 1);
+    const dvec3 seen = 2.0 * dvec3(centre_ray.x - 10 * step, centre_ray.y, 1);
+    const double r = 0.05 * std::abs(step);
+    for (const dvec3& x : {hidden, seen}) add_ceiling(scene, x.x - r, x.x + r, x.y - r, x.y + r, 2);
+    for (int j = 0; j < top.face().h; ++j)
+        for (int i = 0; i < top.face().w; ++i) {
+            const double x = top.at_height_1(i, j).x;
+            if (step > 0 ? x > edge : x < edge) top.show(i, j, 0); // else nothing
+        }
+    ASSERT_EQ(top.shown(column, row), -1) << "the point's pixel shows nothing";
+    ASSERT_EQ(top.shown(column + 1, row), 0) << "its neighbour shows the panel";
+    const std::vector<float> ids = top.ids();
+    const gpu::HemicubeVisibility vis(scene, top.layout, top.frame, top.rgba.data(), dvec3(0.0),
+                                      ids.data());
+    EXPECT_FALSE(vis.visible_in_depth_map(hidden, 1));
+    EXPECT_TRUE(vis.visible_in_depth_map(seen, 2));
+}

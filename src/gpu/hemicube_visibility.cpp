@@ -216,12 +216,14 @@ bool HemicubeVisibility::visible_in_depth_map(const dvec3& x, std::uint32_t own)
     const long pixel = hemicube_pixel(*layout_, frame_, d);
     if (pixel < 0) return false;
     const long q = shown(std::size_t(pixel));
-    if (q < 0 || std::uint32_t(q) == own) return true;
-    const double t = plane_hit(scene_->polygons[std::size_t(q)], eye_, d);
-    if (t < 1 - 1e-6) return false;
+    if (q >= 0 && std::uint32_t(q) == own) return true;
+    if (q >= 0 && plane_hit(scene_->polygons[std::size_t(q)], eye_, d) < 1 - 1e-6) return false;
     // What the pixel shows may lie in x's plane (a neighbour of x's polygon, the two beyond
-    // a nearer floor): x is also hidden by what the pixels around it show, if the segment to x
-    // crosses it.
+    // a nearer floor), or be nothing where x lies within a pixel of a silhouette (the pixel's
+    // centre ray passing beside a panel that hides x: the office glb's desk panel hid the
+    // inner face of its end 6 mm inside its edge from an LED bar 1.5 m away, and that face
+    // was linked whole): x is also hidden by what the pixels around it show, if the segment
+    // to x crosses it.
     const long w = long(layout_->width);
     const long px = pixel % w, py = pixel / w;
     for (const HemicubeLayout::Face& f : layout_->faces) {

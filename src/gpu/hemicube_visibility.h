@@ -59,7 +59,8 @@ class HemicubeVisibility {
     /// it along its ray (the shown surface is taken to fill the pixel: a sub-pixel polygon
     /// behind a thin occluder is not seen through it); and it is hidden if the segment to x
     /// crosses a polygon shown in the 3 x 3 pixels around (what the pixel shows may lie in x's
-    /// plane, beside the floor that hides x).
+    /// plane, beside the floor that hides x, or be nothing, x lying within a pixel of the
+    /// silhouette of what hides it).
     bool visible_in_depth_map(const dvec3& x, std::uint32_t own) const;
 
     /// Calls mark(i) for every pixel i that shows the front of a polygon P next to a pixel
