@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "ff/bvh.h"
 #include "hemirad/provider.h"
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"
@@ -181,6 +182,44 @@ TEST(ClusterCentre, InsideAWallSlabIsInAThinGap) {
     EXPECT_TRUE(in_thin_gap(s, {0, 1, 2, 3, 4, 5}, {4.95, 1.5, 1.5}, 0.5)) << "two-sided";
     EXPECT_FALSE(in_thin_gap(s, {0, 3}, {4.95, 1.5, 1.5}, 0.5)) << "a face and its twin";
     EXPECT_FALSE(in_thin_gap(s, {0, 1, 2, 3, 4, 5}, {4.7, 1.5, 1.5}, 0.5)) << "two-sided room";
+}
+
+// light_hidden_from_centre, on the office glb's case: a bookshelf board's underside (0.5 x 3 m,
+// 40 cm in front of a 20 cm wall slab) in a cluster with the inner face of the slab's far
+// side (3 x 3 m). Their area-weighted centre lies in the slab (x = 5.02); the board's points
+// see it only through the slab's room face, so all of the board's light is hidden from it,
+// while the slab's inner face sees it. From the air under the board nothing is hidden. The
+// slab two-sided (its faces' twins back to back with them) changes nothing; a polygon
+// without power is not judged.
+TEST(ClusterCentre, LightBehindAWallIsHiddenFromTheCentre) {
+    Scene s;
+    s.materials.push_back({"grey", dvec3(0.5), dvec3(0.0)});
+    s.groups.push_back("g");
+    add_polygon(s, {{4.9, 0, 0}, {4.9, 0, 3}, {4.9, 3, 3}, {4.9, 3, 0}}, 0, 0); // room face, -x
+    add_polygon(s, {{5.1, 0, 0}, {5.1, 0, 3}, {5.1, 3, 3}, {5.1, 3, 0}}, 0, 0); // inner face, -x
+    add_polygon(s, {{4.3, 1.5, 0}, {4.8, 1.5, 0}, {4.8, 1.5, 3}, {4.3, 1.5, 3}}, 0, 0); // board, -y
+    finish_scene(s, "slab");
+    ASSERT_NEAR(s.polygons[0].normal.x, -1, 1e-12);
+    ASSERT_NEAR(s.polygons[1].normal.x, -1, 1e-12);
+    ASSERT_NEAR(s.polygons[2].normal.y, -1, 1e-12);
+    const std::vector<std::uint32_t> cluster = {2, 1};
+    const dvec3 centre = (s.polygons[2].area * s.polygons[2].centroid() +
+                          s.polygons[1].area * s.polygons[1].centroid()) /
+                         (s.polygons[2].area + s.polygons[1].area);
+    ASSERT_GT(centre.x, 4.9);
+    ASSERT_LT(centre.x, 5.1);
+    for (int two_sided = 0; two_sided < 2; ++two_sided) {
+        if (two_sided) make_two_sided(s, [](std::uint32_t) { return true; });
+        const Bvh bvh(s);
+        std::vector<double> h = light_hidden_from_centre(s, bvh, cluster, {1, 1}, centre, 1e-4);
+        EXPECT_EQ(h[0], 1.0) << "the board, through the slab's room face";
+        EXPECT_EQ(h[1], 0.0) << "the slab's inner face";
+        h = light_hidden_from_centre(s, bvh, cluster, {1, 1}, {4.55, 1.0, 1.5}, 1e-4);
+        EXPECT_EQ(h[0], 0.0) << "under the board";
+        EXPECT_EQ(h[1], 1.0) << "the inner face, from the room";
+        h = light_hidden_from_centre(s, bvh, cluster, {1, 0}, centre, 1e-4);
+        EXPECT_EQ(h[1], 0.0) << "no power, not judged";
+    }
 }
 
 // light_off_centre, on the office glb's case: a bar of an LED light (1.4 x 86 cm, at x = 0)

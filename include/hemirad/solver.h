@@ -121,6 +121,7 @@ HEMIRAD_API void validate_options(const SolverOptions& options);
 enum class StopReason { Running, Converged, MaxShots, TimeLimit, NothingToShoot };
 HEMIRAD_API const char* to_string(StopReason r);
 
+class Bvh;
 class ClusterTree;
 class GlazingTracer;
 class LightLayers;
@@ -319,6 +320,9 @@ class HEMIRAD_API Solver {
     /// Shoots the cluster tree's shooter, a cluster node; or returns false, leaving in
     /// `polygon` the polygon to shoot when the descent ends at a single polygon.
     bool shoot_cluster(ShotRecord& rec, std::uint32_t& polygon);
+    /// Whether more than kHiddenFromCentre of cluster c's light (its members' unshot `power`)
+    /// cannot leave from its centre (light_hidden_from_centre).
+    bool light_hidden(const ClusterShooter& c, const std::vector<double>& power);
     void update_cluster_power();
     bool must_split_cluster(std::uint32_t node) const;
 
@@ -342,7 +346,9 @@ class HEMIRAD_API Solver {
     std::vector<std::uint8_t> view_;
     std::vector<std::pair<std::uint64_t, std::uint8_t>> learned_; ///< view_ codes of this shot
     std::unique_ptr<PlaneCuts> plane_cuts_;                       ///< null: no shooter refinement
-    std::unique_ptr<ClusterTree> clusters_;  ///< null: clusters off (or a CPU provider)
+    std::unique_ptr<ClusterTree> clusters_; ///< null: clusters off (or a CPU provider)
+    std::unique_ptr<Bvh>
+        cluster_bvh_; ///< for light_hidden_from_centre (built at the first cluster)
     std::vector<double> cluster_power_;      ///< per cluster node, unshot power summed over RGB
     std::vector<std::uint8_t> cluster_view_; ///< per cluster node, a view code (as view_)
     std::unique_ptr<LightLayers> layers_;    ///< null: no light layers (light_layers.h)

@@ -5,6 +5,8 @@
 #include <numeric>
 #include <utility>
 
+#include "ff/bvh.h"
+
 namespace hemirad {
 
 ClusterTree::ClusterTree(const Scene& scene) : scene_(&scene) {
@@ -113,6 +115,34 @@ bool light_off_centre(const Scene& scene, const std::vector<std::uint32_t>& poly
         weight += power[k];
     }
     return weight > 0 && glm::length(sum / weight - centre) > max_offset;
+}
+
+std::vector<double> light_hidden_from_centre(const Scene& scene, const Bvh& bvh,
+                                             const std::vector<std::uint32_t>& polygons,
+                                             const std::vector<double>& power, const dvec3& centre,
+                                             double lift) {
+    std::vector<double> hidden(polygons.size(), 0.0);
+    std::vector<std::size_t> by_power;
+    double total = 0;
+    for (std::size_t k = 0; k < polygons.size() && k < power.size(); ++k)
+        if (power[k] > 0) by_power.push_back(k), total += power[k];
+    std::sort(by_power.begin(), by_power.end(),
+              [&](std::size_t a, std::size_t b) { return power[a] > power[b]; });
+    constexpr std::size_t kMaxJudged = 256;
+    double judged = 0;
+    for (std::size_t i = 0; i < by_power.size() && i < kMaxJudged && judged < 0.99 * total; ++i) {
+        const std::size_t k = by_power[i];
+        const Polygon& poly = scene.polygons[polygons[k]];
+        const dvec3 c = poly.centroid();
+        int blocked = 0;
+        for (int q = -1; q < poly.count; ++q) {
+            const dvec3 s = (q < 0 ? c : 0.5 * (c + poly.v[q])) + lift * poly.normal;
+            if (bvh.occluded(s, centre, polygons[k], poly.twin)) ++blocked;
+        }
+        judged += power[k];
+        hidden[k] = blocked / double(poly.count + 1);
+    }
+    return hidden;
 }
 
 } // namespace hemirad

@@ -16,6 +16,8 @@
 
 namespace hemirad {
 
+class Bvh;
+
 class ClusterTree {
   public:
     struct Node {
@@ -68,5 +70,18 @@ bool in_thin_gap(const Scene& scene, const std::vector<std::uint32_t>& polygons,
 /// False when every power is 0.
 bool light_off_centre(const Scene& scene, const std::vector<std::uint32_t>& polygons,
                       const std::vector<double>& power, const dvec3& centre, double max_offset);
+
+/// For each of `polygons`, the share of its points that do not see `centre`: of its centroid
+/// and the points halfway from it to each corner, lifted by `lift` off its front, those whose
+/// segment to the centre `bvh` finds blocked. A cluster shooting from there would send that
+/// polygon's light where it sends none (from inside a wall slab, through the side of a shelf).
+/// (A centre behind a polygon's plane counts as seen: a box's centre is behind all its faces,
+/// and refusing those clusters as well tripled the office's shots.) Judges the polygons of most
+/// `power` (one value each, >= 0), up to 256 of them or 99 % of the power; the rest (and those
+/// without power) get 0.
+std::vector<double> light_hidden_from_centre(const Scene& scene, const Bvh& bvh,
+                                             const std::vector<std::uint32_t>& polygons,
+                                             const std::vector<double>& power, const dvec3& centre,
+                                             double lift);
 
 } // namespace hemirad
