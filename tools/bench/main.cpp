@@ -168,11 +168,11 @@ std::vector<Spec> experiments() {
     Spec mpi{"mpi_scaling", "Cornell box to 0.1 %: alone, mpirun -np 1 and 2; bytes per round",
              cornell};
     v.push_back(mpi);
-    // Real buildings (real_building.cpp): the courtyard and the office glb, default options,
-    // against the reference at random surface points.
+    // Real buildings (real_building.cpp): the courtyard and the office glb (lit by its bars,
+    // then by point sources), default options, against the reference at random points.
     v.push_back({"real_building",
-                 "courtyard (65,776 triangles, point sources) and the office glb: default solve "
-                 "vs reference at random points",
+                 "courtyard (65,776 triangles, point sources) and the office glb (its bars; point "
+                 "sources): default solve vs reference at random points",
                  cornell});
     // Incremental re-solving (incremental.cpp): the office walk-through converged, then one
     // downlight off and the spot halved, against a fresh solve of the edited project.

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,31 @@ struct Building {
     /// none): where the first leaves the lit points too noisy to read the solve's error.
     std::uint64_t lit_samples = 0;
 };
+
+// A SCENE.json (in the temporary directory) that includes the office glb and three isotropic
+// point sources of 500 cd, at 2.2 to 3 m above its floor: its path.
+std::string office_points_json(const std::string& office_glb) {
+    const std::filesystem::path path =
+        std::filesystem::temp_directory_path() / "hemirad-bench-office-points.json";
+    Json j = Json::object();
+    j["include"] = Json::array({std::filesystem::absolute(office_glb).string()});
+    Json lights = Json::array();
+    const double at[3][3] = {{0, 3.0, 0}, {-2.5, 2.2, 2.5}, {2.5, 2.6, -2.5}};
+    for (int k = 0; k < 3; ++k) {
+        Json l = Json::object();
+        l["name"] = "P" + std::to_string(k + 1);
+        l["candela"] = 500;
+        l["position"] = Json::array({at[k][0], at[k][1], at[k][2]});
+        lights.push_back(l);
+    }
+    j["luminaires"] = lights;
+    std::FILE* f = std::fopen(path.string().c_str(), "w");
+    if (!f) throw std::runtime_error("real_building: cannot write " + path.string());
+    const std::string text = j.dump(1);
+    std::fwrite(text.data(), 1, text.size(), f);
+    std::fclose(f);
+    return path.string();
+}
 
 // Solve with the default options (as `hemirad solve SCENE --probes P --probe-out O`), read
 // the points with the default final gather, and compare with the reference.
@@ -160,10 +186,18 @@ void run_real_building(const std::string& office_glb) {
     std::vector<Building> buildings = {
         {"courtyard", [] { return validation::make_courtyard(); }, 400, 65536, 7},
     };
-    if (!office_glb.empty() && std::filesystem::exists(office_glb))
+    if (!office_glb.empty() && std::filesystem::exists(office_glb)) {
         buildings.push_back(
             {"office", [office_glb] { return load_scene(office_glb); }, 1000, 65536, 7, 2097152});
-    else
+        // The same office lit as the issue's test building is, by point sources (three of
+        // 500 cd in the room's air, 27.6 W against its bars' 2.4 W), through a SCENE.json as a
+        // user would write it: a third-party building in the case the issue judges. Its
+        // points are lit directly, next-event estimated: 65,536 paths give a median standard
+        // error of 0.25 %.
+        buildings.push_back({"office-pt",
+                             [office_glb] { return load_scene(office_points_json(office_glb)); },
+                             1000, 65536, 7});
+    } else
         std::fprintf(stderr, "real_building: no office glb (%s): the courtyard only\n",
                      office_glb.empty() ? "not given" : office_glb.c_str());
     Json rows = Json::array();
