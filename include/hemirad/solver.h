@@ -346,9 +346,8 @@ class HEMIRAD_API Solver {
     std::vector<std::uint8_t> view_;
     std::vector<std::pair<std::uint64_t, std::uint8_t>> learned_; ///< view_ codes of this shot
     std::unique_ptr<PlaneCuts> plane_cuts_;                       ///< null: no shooter refinement
-    std::unique_ptr<ClusterTree> clusters_; ///< null: clusters off (or a CPU provider)
-    std::unique_ptr<Bvh>
-        cluster_bvh_; ///< for light_hidden_from_centre (built at the first cluster)
+    std::unique_ptr<ClusterTree> clusters_;  ///< null: clusters off (or a CPU provider)
+    std::unique_ptr<Bvh> cluster_bvh_;       ///< light_hidden_from_centre's, built when needed
     std::vector<double> cluster_power_;      ///< per cluster node, unshot power summed over RGB
     std::vector<std::uint8_t> cluster_view_; ///< per cluster node, a view code (as view_)
     std::unique_ptr<LightLayers> layers_;    ///< null: no light layers (light_layers.h)
