@@ -479,11 +479,13 @@ bool Solver::shoot_cluster(ShotRecord& rec, std::uint32_t& polygon) {
         c.members.assign(tree.order().begin() + n.begin, tree.order().begin() + n.end);
         std::sort(c.members.begin(), c.members.end());
         dvec3 power(0.0), centre(0.0), axis(0.0);
+        std::vector<dvec3> member_unshot(c.members.size());
         std::vector<double> member_power(c.members.size(), 0.0);
         for (std::size_t i = 0; i < c.members.size(); ++i) {
             const std::uint32_t m = c.members[i];
             if (hierarchy_.needs_push_pull(m)) hierarchy_.push_pull(m);
-            member_power[i] = std::max(0.0, sum(hierarchy_.unshot_power(m)));
+            member_unshot[i] = hierarchy_.unshot_power(m);
+            member_power[i] = std::max(0.0, sum(member_unshot[i]));
         }
         rec.t_push_pull += since(t0);
         // It shoots from the area-weighted centre of its polygons: a point that does not move
@@ -514,7 +516,7 @@ bool Solver::shoot_cluster(ShotRecord& rec, std::uint32_t& polygon) {
             const double w = member_power[i];
             if (!(w > 0)) continue;
             const Polygon& poly = scene_->polygons[m];
-            power += hierarchy_.unshot_power(m);
+            power += member_unshot[i];
             weight += w;
             axis += w * poly.normal;
             std::size_t k = 0;

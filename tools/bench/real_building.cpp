@@ -7,9 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
-#include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "core/timer.h"
 #include "hemirad/gather.h"
@@ -20,6 +21,7 @@
 #include "hemirad/scene_io.h"
 #include "hemirad/solver.h"
 #include "hemirad/validation_scenes.h"
+#include "output/atomic_file.h"
 #include "point_stats.h"
 
 namespace hemirad::bench {
@@ -37,29 +39,34 @@ struct Building {
     std::uint64_t lit_samples = 0;
 };
 
-// A SCENE.json (in the temporary directory) that includes the office glb and three isotropic
-// point sources of 500 cd, at 2.2 to 3 m above its floor: its path.
-std::string office_points_json(const std::string& office_glb) {
-    const std::filesystem::path path =
-        std::filesystem::temp_directory_path() / "hemirad-bench-office-points.json";
+// The office glb lit by three isotropic point sources of 500 cd, at 2.2 to 3 m above its
+// floor, loaded through a SCENE.json as a user would write it (in the temporary directory,
+// removed once read).
+Scene office_with_point_sources(const std::string& office_glb) {
     Json j = Json::object();
     j["include"] = Json::array({std::filesystem::absolute(office_glb).string()});
     Json lights = Json::array();
-    const double at[3][3] = {{0, 3.0, 0}, {-2.5, 2.2, 2.5}, {2.5, 2.6, -2.5}};
+    const dvec3 at[3] = {{0, 3.0, 0}, {-2.5, 2.2, 2.5}, {2.5, 2.6, -2.5}};
     for (int k = 0; k < 3; ++k) {
         Json l = Json::object();
         l["name"] = "P" + std::to_string(k + 1);
         l["candela"] = 500;
-        l["position"] = Json::array({at[k][0], at[k][1], at[k][2]});
+        l["position"] = at[k];
         lights.push_back(l);
     }
     j["luminaires"] = lights;
-    std::FILE* f = std::fopen(path.string().c_str(), "w");
-    if (!f) throw std::runtime_error("real_building: cannot write " + path.string());
-    const std::string text = j.dump(1);
-    std::fwrite(text.data(), 1, text.size(), f);
-    std::fclose(f);
-    return path.string();
+    const std::string path = (std::filesystem::temp_directory_path() /
+                              ("hemirad-bench-office-" + std::to_string(::getpid()) + ".json"))
+                                 .string();
+    write_file_atomically(path, j.dump(1));
+    struct Remove {
+        const std::string& path;
+        ~Remove() {
+            std::error_code ignored;
+            std::filesystem::remove(path, ignored);
+        }
+    } remove{path};
+    return load_scene(path);
 }
 
 // Solve with the default options (as `hemirad solve SCENE --probes P --probe-out O`), read
@@ -195,8 +202,8 @@ void run_real_building(const std::string& office_glb) {
         // points are lit directly, next-event estimated: 65,536 paths give a median standard
         // error of 0.25 %.
         buildings.push_back({"office-pt",
-                             [office_glb] { return load_scene(office_points_json(office_glb)); },
-                             1000, 65536, 7});
+                             [office_glb] { return office_with_point_sources(office_glb); }, 1000,
+                             65536, 7});
     } else
         std::fprintf(stderr, "real_building: no office glb (%s): the courtyard only\n",
                      office_glb.empty() ? "not given" : office_glb.c_str());
