@@ -222,6 +222,54 @@ TEST(NearReceivers, TrapezoidBesideALampMatchesItsIntegral) {
     EXPECT_NEAR(lamp_row(scene) / expected - 1, 0, 0.01) << "expected " << expected;
 }
 
+// A board 20 cm wide 1 cm in front of a 1 m wall whose unshot light is all on its other half
+// (a whiteboard on a wall half in its shadow, as in the office glb): the board sees the dark
+// wall in front of it, and only grazing light from the lit half. Its factor is the kernel of
+// the lit half, twice the wall's mean radiosity, averaged over the board (a 40 x 40 midpoint
+// rule here): 0.00078; with the wall's mean it reads 0.999.
+TEST(NearReceivers, BoardBeforeTheDarkHalfOfAWallSeesTheDarkness) {
+    const std::vector<dvec3> wall{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    const double z = 0.01, x0 = 0.65, x1 = 0.85, y0 = 0.4, y1 = 0.6;
+    const std::vector<dvec3> board{{x0, y0, z}, {x0, y1, z}, {x1, y1, z}, {x1, y0, z}};
+    const Scene scene = make_scene({wall, board}, {"wall", "board"});
+    const Polygon &w = scene.polygons[0], &b = scene.polygons[1];
+    ASSERT_NEAR(w.normal.z, 1.0, 1e-12);
+    ASSERT_NEAR(b.normal.z, -1.0, 1e-12);
+    Shooter sh = whole_polygon_shooter(scene, 0);
+    sh.emission_levels = 1;
+    std::vector<PatchGeometry> lit;
+    for (std::uint32_t c : patch_children(false, 0, 0)) {
+        const PatchGeometry g = patch_geometry(w, 1, c);
+        sh.emission.push_back(g.centre.x < 0.5 ? 2.0f : 0.0f);
+        if (g.centre.x < 0.5) lit.push_back(g);
+    }
+    ASSERT_EQ(lit.size(), 2u);
+    double expected = 0, even = 0;
+    const int n = 40;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const dvec3 x(x0 + (x1 - x0) * (i + 0.5) / n, y0 + (y1 - y0) * (j + 0.5) / n, z);
+            for (const PatchGeometry& g : lit)
+                expected += 2 * point_to_polygon_ff(x, b.normal, g.corners.data(), g.count);
+            even += point_to_polygon_ff(x, b.normal, w.v.data(), 4);
+        }
+    expected /= n * n;
+    even /= n * n;
+    ASSERT_GT(even, 10 * expected); // the case means something
+    HierarchyOptions ho;
+    ho.max_depth = 0;
+    ho.patch_size = 1;
+    const Discretisation disc = discretise(scene, ho);
+    auto provider = gpu_provider("hybrid", scene, disc, 256);
+    std::vector<Link> links;
+    provider->shoot(sh, links);
+    double ff = -1;
+    for (const Link& l : links)
+        if (l.receiver.polygon == 1) ff = l.ff;
+    ASSERT_GE(ff, 0) << "the board is not linked";
+    EXPECT_NEAR(ff / expected - 1, 0, 0.03) << "expected " << expected << ", even " << even;
+}
+
 // --- the shader's analytic value against Howell's closed forms -----------------------------
 double b3(double a, double b, double c) { // element parallel to a x b at c, normal through a corner
     const double X = a / c, Y = b / c;

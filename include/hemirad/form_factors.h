@@ -22,6 +22,12 @@ struct Shooter {
     dvec3 normal{0.0};         ///< the polygon's unit normal
     double unshot_power = 0;   ///< sum over RGB of |dB|*area [W]; providers may adapt to it
     double power_fraction = 1; ///< unshot_power / total unshot power now (0..1]
+    /// Where its unshot radiosity is uneven, the radiosity of the quadtree nodes below it over
+    /// its own mean, `emission_levels` levels deep, in pre-order (each node's four children,
+    /// each followed by its own descendants); empty: even. Receivers near the shooter, where
+    /// the shooter's extent matters, weight its parts' kernels by them.
+    std::vector<float> emission;
+    int emission_levels = 0;
 };
 
 /// A cluster of polygons that shoots as one point (cluster_tree.h; Sillion 1995): from

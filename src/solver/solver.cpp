@@ -52,6 +52,39 @@ bool measured(std::uint8_t code) {
     return code != kViewUnknown && !(code & kViewPredicted);
 }
 
+// Shooter::emission: a shooter's unshot radiosity is uneven (a wall half in a desk's
+// shadow) where its nodes this many levels below differ by more than kUnevenEmission. Near
+// receivers then weight its parts by their radiosity: the back of a whiteboard 1.3 cm from
+// a wall sees the dark wall behind the board, not the wall's mean.
+constexpr int kEmissionLevels = 3;
+constexpr double kUnevenEmission = 1.5;
+
+void describe_emission(const Hierarchy& h, Shooter& s) {
+    s.emission.clear();
+    s.emission_levels = 0;
+    const PatchAddress& a = s.address;
+    const int levels = std::min(kEmissionLevels, h.depth(a.polygon) - int(a.level));
+    const double mean = magnitude(dvec3(h.node(a).dB));
+    if (levels <= 0 || !(mean > 0)) return;
+    const bool tri = h.scene().polygons[a.polygon].is_triangle();
+    double lo = 1e300, hi = 0;
+    const auto visit = [&](const auto& self, std::uint32_t level, std::uint32_t index) -> void {
+        for (std::uint32_t c : patch_children(tri, level, index)) {
+            const double w = magnitude(dvec3(h.node({a.polygon, level + 1, c}).dB)) / mean;
+            s.emission.push_back(float(w));
+            if (int(level + 1 - a.level) < levels)
+                self(self, level + 1, c);
+            else
+                lo = std::min(lo, w), hi = std::max(hi, w);
+        }
+    };
+    visit(visit, a.level, a.index);
+    if (hi > kUnevenEmission * lo)
+        s.emission_levels = levels;
+    else
+        s.emission.clear();
+}
+
 // A cluster lobe's planes (ClusterShooter::add_lobe_planes): polygons whose planes lie more
 // than this share of the cluster's radius apart shoot from planes of their own (a 3.75 m
 // cluster keeps a 20 cm slab's faces apart down to 4 mm), at most kLobePlanes a lobe.
@@ -329,6 +362,7 @@ PatchAddress Solver::shoot_patch(std::uint32_t polygon, ShotRecord& rec, dvec3& 
         shooter.unshot_power = magnitude(dB) * area_s;
         const double total = sum(unshot_power());
         shooter.power_fraction = total > 0 ? std::min(1.0, shooter.unshot_power / total) : 1.0;
+        describe_emission(hierarchy_, shooter);
 
         // A node whose view nothing is known of yet, or whose predicted view is near the
         // limit, is measured on a coarse hemicube first, where the provider has one: a
