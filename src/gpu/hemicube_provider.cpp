@@ -645,6 +645,11 @@ class HemicubeProvider final : public FormFactorProvider {
         return s;
     }
 
+    // Is x in front of a patch shooter's plane (not behind it, nor in it)?
+    bool before_shooter(const Shooter& s, const dvec3& x) const {
+        return glm::dot(x - s.geometry.centre, s.normal) > plane_eps_;
+    }
+
     // F(dA_j -> S) of the polygon shooter, or for a point shot E_j per watt emitted (see
     // shoot_sphere), at a receiver centre with normal n, unoccluded.
     double analytic_at(const Shooter& s, const dvec3& centre, const dvec3& n) const {
@@ -659,7 +664,7 @@ class HemicubeProvider final : public FormFactorProvider {
         }
         // A patch emits from its front only: a point behind it (or in its plane) gets nothing
         // (the kernel below would integrate over the shooter's back).
-        if (glm::dot(centre - s.geometry.centre, s.normal) <= plane_eps_) return 0;
+        if (!before_shooter(s, centre)) return 0;
         return point_to_polygon_ff(centre, n, s.geometry.corners.data(), s.geometry.count);
     }
 
@@ -678,7 +683,7 @@ class HemicubeProvider final : public FormFactorProvider {
     }
     double near_kernel(const Shooter& s, const dvec3& x, const dvec3& n) const {
         if (!weighs_emission(s, n)) return analytic_at(s, x, n);
-        if (glm::dot(x - s.geometry.centre, s.normal) <= plane_eps_) return 0;
+        if (!before_shooter(s, x)) return 0;
         const Polygon& poly = scene_->polygons[s.address.polygon];
         std::size_t at = 0;
         return emitter_parts(s, poly, x, n, s.address.level, s.address.index, s.emission_levels,
@@ -824,7 +829,7 @@ class HemicubeProvider final : public FormFactorProvider {
     bool in_front_of(const Shooter& s, std::uint32_t p) const {
         const Polygon& q = scene_->polygons[p];
         for (int k = 0; k < q.count; ++k)
-            if (glm::dot(q.v[k] - s.geometry.centre, s.normal) > plane_eps_) return true;
+            if (before_shooter(s, q.v[k])) return true;
         return false;
     }
 
