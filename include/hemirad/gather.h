@@ -26,23 +26,30 @@
 // Q's leaf centres, readout.h); Q's own emission is not counted there (it is in the direct
 // part); a ray that escapes or hits the back of a polygon brings nothing. With pdf cos/pi the
 // estimate is E_indirect = (1/N) sum rho_Q H(y). Errors in H average over the hemisphere,
-// except near the point, where one leaf fills much of it (a contact line, a corner): a hit
-// nearer than 3 leaf sizes of Q estimates H(y) at y itself instead, as the direct light at y
-// (one shadow ray per emitter, times its exact unoccluded form factor) plus rho H of one
-// more cosine ray from y into the solution.
+// except where the hit is near the point: there one leaf fills much of the hemisphere (a
+// contact line, a corner), and in clutter (a cavity behind furniture, the wall under a shelf)
+// the leaves hold too little of the light that reaches them after several bounces, since the
+// hemicubes see such places through narrow openings. A hit nearer than 30 leaf sizes of Q
+// estimates H(y) at y itself instead: the direct light at y (one shadow ray per emitter, times
+// its exact unoccluded form factor; one per point luminaire) plus rho H of one more cosine ray
+// from y, traced on the same way, for at most 8 bounces: a short path traced through the
+// clutter, the solution read where it leaves it. After the last traced bounce, a hit nearer
+// than a tenth of a leaf (a gap, an object sunk into another) brings its direct light only.
 //
 // A point whose first `rays` are noisy (a small bright surface in view: the sunlit patch of a
 // floor, a wall beside a spot's pool of light) is gathered again with more rays: the relative
 // standard error of the first estimate is taken from the differences of neighbouring strata
 // (each pair a stratum of two samples, which overstates it for a smooth field); above
 // `indirect_error` the point is gathered anew with (error / indirect_error)^2 times as many
-// rays, at most 16 times `rays`, and that estimate alone is returned.
+// rays, at most 16 times `rays`, and no more ray casts (indirect rays and their traced
+// bounces) than 32 times `rays` (a point deep in clutter, whose paths are long, gets fewer
+// rays); that estimate alone is returned.
 //
 // The sky (sky.h) is direct light gathered apart at the point (at() only, not direct_at()):
 // stratified cosine rays that leave the scene bring the sky's or the ground's luminance, with
 // the cells on the edges of openings sampled finer (solver/sky_light.h sky_irradiance). The
-// indirect rays' escapes bring nothing (that light is the direct part), except for the second
-// rays from a hit near the point, which bring the sky's radiance.
+// indirect rays' escapes bring nothing (that light is the direct part), except for the rays
+// of a traced path past its first hit, which bring the sky's radiance.
 //
 // Results depend only on the solution, the options and the point's index (each point has its
 // own generator seeded from `seed` and the index), not on the number of threads.
@@ -125,11 +132,14 @@ class HEMIRAD_API FinalGather {
     double luminous_opening(const Luminaire& l, const dvec3& x, const dvec3& n, std::uint32_t self,
                             double r) const;
     /// One pass of m x m stratified rays; with relative_error, the estimate's relative
-    /// standard error from the differences of neighbouring strata.
+    /// standard error from the differences of neighbouring strata; with casts_a_ray, the
+    /// rays cast (indirect rays and their traced bounces) per indirect ray.
     dvec3 indirect_pass(const dvec3& x, const dvec3& n, std::uint32_t self, std::uint64_t seed,
-                        int m, double* relative_error) const;
-    dvec3 reflected(const dvec3& origin, const dvec3& dir, std::uint32_t self, Rng& rng,
-                    bool near_path) const;
+                        int m, double* relative_error, double* casts_a_ray) const;
+    /// What an indirect ray brings (rho H at its hit), its path traced on through hits near
+    /// its origin (bounce: the hits before this one); counts its ray casts in casts.
+    dvec3 reflected(const dvec3& origin, const dvec3& dir, std::uint32_t self, Rng& rng, int bounce,
+                    std::uint64_t& casts) const;
     dvec3 direct_sample(const dvec3& y, const dvec3& n, std::uint32_t self, Rng& rng) const;
     /// The luminaires' and the sun's direct irradiance at x (one shadow ray each), RGB.
     dvec3 luminaires(const dvec3& x, const dvec3& n, std::uint32_t self) const;

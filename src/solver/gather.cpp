@@ -20,10 +20,19 @@ namespace hemirad {
 
 namespace {
 
-constexpr int kPenumbraSplit = 2;  ///< a penumbra cell is re-sampled 4^2 = 16 times finer
-constexpr int kMaxCellLevel = 3;   ///< at most 8 x 8 coarse cells, 32 x 32 fine ones
-constexpr double kNearLeaves = 3;  ///< hits nearer than this many leaf sizes: evaluated at the hit
-constexpr double kGapLeaves = 0.1; ///< ...and nearer than this: a gap, direct light only
+constexpr int kPenumbraSplit = 2; ///< a penumbra cell is re-sampled 4^2 = 16 times finer
+constexpr int kMaxCellLevel = 3;  ///< at most 8 x 8 coarse cells, 32 x 32 fine ones
+/// An indirect ray's hit nearer than this many leaf sizes is not read from the solution: the
+/// path goes on from it (the direct light sampled there, one more cosine ray)...
+constexpr double kTracedLeaves = 30;
+constexpr int kTracedBounces = 8; ///< ...for at most this many bounces
+/// A hit nearer than this many leaf sizes after the last traced bounce is in a gap: the leaves
+/// there average light from outside it, so the hit brings its direct light only.
+constexpr double kGapLeaves = 0.1;
+/// A noisy point is gathered again with at most 4 x 4 = 16 times the rays, and at most this
+/// many ray casts a first-pass ray (the 16 times two casts of a ray and one more bounce).
+constexpr int kMaxRegatherSide = 4;
+constexpr double kRegatherCasts = 32;
 /// A point nearer a luminaire than this many times its luminous opening's size takes its light
 /// from points spread over the opening (luminous_opening), at most kMaxOpeningSide a side.
 constexpr double kOpeningSizes = 5;
@@ -175,13 +184,14 @@ dvec3 FinalGather::direct_sample(const dvec3& y, const dvec3& n, std::uint32_t s
 }
 
 dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_t self, Rng& rng,
-                             bool near_path) const {
+                             int bounce, std::uint64_t& casts) const {
     const Scene& scene = h_->scene();
     Hit hit;
+    ++casts;
     if (!bvh_->intersect(origin, dir, 1e300, hit, self)) {
-        // Escaped: the sky (or the ground) for the rays from a hit near the point; the first
-        // rays' sky is the direct part (at()), gathered apart.
-        if (near_path || !scene.sky) return dvec3(0.0);
+        // Escaped: the sky (or the ground) for the rays of a traced path past its first hit;
+        // the first rays' sky is the direct part (at()), gathered apart.
+        if (bounce == 0 || !scene.sky) return dvec3(0.0);
         return dvec3(std::numbers::pi * scene.sky->radiance(glm::normalize(dir)) *
                      glazing_->along(origin, dir, std::numeric_limits<double>::infinity()));
     }
@@ -193,25 +203,28 @@ dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_
     const dvec3 rho = reflectance_at(scene, hit.polygon, hit.u, hit.v); // the texel there
     if (!(rho.x > 0 || rho.y > 0 || rho.z > 0)) return dvec3(0.0);
     const double distance = hit.t * glm::length(dir);
-    const bool near = distance < kNearLeaves * leaf_size_[hit.polygon];
-    if (near && near_path) {
-        // Near the point a leaf's value is too coarse (a contact shadow, a corner): estimate
-        // H(y) at the hit itself, direct light sampled there plus one more cosine ray into the
-        // solution. One sample each; the primary rays average them.
+    const double leaf = leaf_size_[hit.polygon];
+    if (distance < kTracedLeaves * leaf && bounce < kTracedBounces) {
+        // Near the point a leaf's value is too coarse (a contact shadow, a corner), and in
+        // clutter (a cavity behind furniture, under a shelf) the leaves hold too little of the
+        // light that reaches them after several bounces: estimate H(y) at the hit itself, the
+        // direct light sampled there plus one more cosine ray, traced on the same way. One
+        // sample each; the primary rays average them.
         const dvec3 y = origin + hit.t * dir;
+        const dvec3 direct_y = direct_sample(y, q.normal, hit.polygon, rng);
         dvec3 t, b;
         orthonormal_basis(q.normal, t, b);
         const double u1 = rng.uniform(), u2 = rng.uniform();
         const dvec3 next = cosine_direction(q.normal, t, b, u1, u2);
         const dvec3 y_off = y + offset_ * q.normal;
-        // In a gap far thinner than a leaf (two surfaces almost touching: an object sunk
-        // into another, a pocket), the leaves beyond average light from outside the gap: the
-        // direct light at y alone.
-        if (distance < kGapLeaves * leaf_size_[hit.polygon])
-            return through * rho * direct_sample(y, q.normal, hit.polygon, rng);
         return through * rho *
-               (direct_sample(y, q.normal, hit.polygon, rng) +
-                reflected(y_off, next, hit.polygon, rng, false));
+               (direct_y + reflected(y_off, next, hit.polygon, rng, bounce + 1, casts));
+    }
+    if (distance < kGapLeaves * leaf) {
+        // In a gap far thinner than a leaf (two surfaces almost touching: an object sunk into
+        // another, a pocket), the leaves beyond average light from outside the gap.
+        const dvec3 y = origin + hit.t * dir;
+        return through * rho * direct_sample(y, q.normal, hit.polygon, rng);
     }
     return through * rho * irradiance_at(*h_, SurfacePoint{hit.polygon, hit.u, hit.v, 0.0});
 }
@@ -219,27 +232,36 @@ dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_
 dvec3 FinalGather::indirect(const dvec3& x, const dvec3& n, std::uint32_t self,
                             std::uint64_t seed) const {
     const int m = std::max(1, int(std::lround(std::sqrt(double(options_.rays)))));
-    double error = 0;
-    const dvec3 first = indirect_pass(x, n, self, seed, m, &error);
+    double error = 0, casts_a_ray = 0;
+    const dvec3 first = indirect_pass(x, n, self, seed, m, &error, &casts_a_ray);
     if (!(options_.indirect_error > 0) || !(error > options_.indirect_error)) return first;
-    // Noisy: (error / target)^2 times the rays, that is m * error / target strata a side.
-    const int again = std::min(4 * m, int(std::ceil(m * error / options_.indirect_error)));
-    return indirect_pass(x, n, self, splitmix64(seed + 0x9e3779b97f4a7c15ull), again, nullptr);
+    // Noisy: (error / target)^2 times the rays, that is m * error / target strata a side,
+    // within the caps on rays and ray casts (long traced paths in clutter cost more a ray).
+    const int affordable =
+        int(std::floor(m * std::sqrt(kRegatherCasts / std::max(1.0, casts_a_ray))));
+    const int again = std::min(
+        {kMaxRegatherSide * m, affordable, int(std::ceil(m * error / options_.indirect_error))});
+    if (again <= m) return first;
+    return indirect_pass(x, n, self, splitmix64(seed + 0x9e3779b97f4a7c15ull), again, nullptr,
+                         nullptr);
 }
 
 dvec3 FinalGather::indirect_pass(const dvec3& x, const dvec3& n, std::uint32_t self,
-                                 std::uint64_t seed, int m, double* relative_error) const {
+                                 std::uint64_t seed, int m, double* relative_error,
+                                 double* casts_a_ray) const {
     Rng rng(seed);
     dvec3 t, b;
     orthonormal_basis(n, t, b);
     const dvec3 origin = x + offset_ * n;
     dvec3 sum(0.0);
+    std::uint64_t casts = 0;
     // Per stratum pair (i, i + 1) on a row: the squared difference of their sums over RGB.
     double pair_variance = 0, previous = 0;
     for (int j = 0; j < m; ++j)
         for (int i = 0; i < m; ++i) {
             const double u1 = (i + rng.uniform()) / m, u2 = (j + rng.uniform()) / m;
-            const dvec3 v = reflected(origin, cosine_direction(n, t, b, u1, u2), self, rng, true);
+            const dvec3 v =
+                reflected(origin, cosine_direction(n, t, b, u1, u2), self, rng, 0, casts);
             sum += v;
             const double y = v.x + v.y + v.z;
             if (i % 2 == 1) pair_variance += (y - previous) * (y - previous);
@@ -251,6 +273,7 @@ dvec3 FinalGather::indirect_pass(const dvec3& x, const dvec3& n, std::uint32_t s
         const double total = sum.x + sum.y + sum.z;
         *relative_error = total > 0 ? std::sqrt(pair_variance) / total : 0.0;
     }
+    if (casts_a_ray) *casts_a_ray = double(casts) / N;
     return sum / N;
 }
 
