@@ -30,7 +30,7 @@ constexpr int kTracedBounces = 8; ///< ...for at most this many bounces
 /// there average light from outside it, so the hit brings its direct light only.
 constexpr double kGapLeaves = 0.1;
 /// A noisy point is gathered again with at most 4 x 4 = 16 times the rays, and at most this
-/// many ray casts a first-pass ray (the 16 times two casts of a ray and one more bounce).
+/// many ray casts for each first-pass ray (16 times the two casts of a ray with one bounce).
 constexpr int kMaxRegatherSide = 4;
 constexpr double kRegatherCasts = 32;
 /// A point nearer a luminaire than this many times its luminous opening's size takes its light
@@ -204,13 +204,13 @@ dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_
     if (!(rho.x > 0 || rho.y > 0 || rho.z > 0)) return dvec3(0.0);
     const double distance = hit.t * glm::length(dir);
     const double leaf = leaf_size_[hit.polygon];
+    const dvec3 y = origin + hit.t * dir;
     if (distance < kTracedLeaves * leaf && bounce < kTracedBounces) {
         // Near the point a leaf's value is too coarse (a contact shadow, a corner), and in
         // clutter (a cavity behind furniture, under a shelf) the leaves hold too little of the
         // light that reaches them after several bounces: estimate H(y) at the hit itself, the
         // direct light sampled there plus one more cosine ray, traced on the same way. One
         // sample each; the primary rays average them.
-        const dvec3 y = origin + hit.t * dir;
         const dvec3 direct_y = direct_sample(y, q.normal, hit.polygon, rng);
         dvec3 t, b;
         orthonormal_basis(q.normal, t, b);
@@ -223,7 +223,6 @@ dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_
     if (distance < kGapLeaves * leaf) {
         // In a gap far thinner than a leaf (two surfaces almost touching: an object sunk into
         // another, a pocket), the leaves beyond average light from outside the gap.
-        const dvec3 y = origin + hit.t * dir;
         return through * rho * direct_sample(y, q.normal, hit.polygon, rng);
     }
     return through * rho * irradiance_at(*h_, SurfacePoint{hit.polygon, hit.u, hit.v, 0.0});
