@@ -29,12 +29,17 @@
 // except where the hit is near the point: there one leaf fills much of the hemisphere (a
 // contact line, a corner), and in clutter (a cavity behind furniture, the wall under a shelf)
 // the leaves hold too little of the light that reaches them after several bounces, since the
-// hemicubes see such places through narrow openings. A hit nearer than 30 leaf sizes of Q
-// estimates H(y) at y itself instead: the direct light at y (one shadow ray per emitter, times
-// its exact unoccluded form factor; one per point luminaire) plus rho H of one more cosine ray
-// from y, traced on the same way, for at most 8 bounces: a short path traced through the
-// clutter, the solution read where it leaves it. After the last traced bounce, a hit nearer
-// than a tenth of a leaf (a gap, an object sunk into another) brings its direct light only.
+// hemicubes see such places through narrow openings. So the first hit of every ray, and a later
+// hit nearer than 30 leaf sizes of Q, estimates H(y) at y itself instead: the direct light at y
+// plus rho H of one more cosine ray from y, traced on the same way, for at most 8 bounces: the
+// solution is read one bounce away at the nearest (its errors averaged over the hemispheres of
+// all the first hits, and damped by their reflectance), and where a path leaves the clutter.
+// The direct light at a hit: one shadow ray to each point luminaire; one to each emitter
+// polygon that holds an eighth or more of the hit's unoccluded emitter light (its exact form
+// factor times the ray's visibility), and to the others by Russian roulette, in proportion to
+// their light and weighted by its inverse (unbiased, about 8 rays however many emitter
+// polygons). After the last traced bounce, a hit nearer than a tenth of a leaf (a gap, an
+// object sunk into another) brings its direct light only.
 //
 // A point whose first `rays` are noisy (a small bright surface in view: the sunlit patch of a
 // floor, a wall beside a spot's pool of light) is gathered again with more rays: the relative
