@@ -38,7 +38,8 @@ TEST(GatherPaths, AFurnaceOfManyEmitterPolygonsIsGatheredWithoutBias) {
     go.indirect_error = 0; // one pass of 1024 rays: the test is on the mean, not the re-gather
     const FinalGather gather(h, go);
     const double expected = M / (1 - rho);
-    // Points on the floor (y = 0, normal +y) away from and near the walls, and one in free space.
+    // Points on the floor's plane (y = 0, normal +y) away from and near the walls, and one
+    // inside the box facing +x; all given as points in free space (no polygon).
     const std::vector<GatherPoint> points = {
         {dvec3(0.5, 0.0, 0.5), dvec3(0, 1, 0), GatherPoint::kNoSurface},
         {dvec3(0.07, 0.0, 0.93), dvec3(0, 1, 0), GatherPoint::kNoSurface},

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <utility>
 #include <vector>
 
 #include "core/parallel.h"
@@ -177,7 +176,11 @@ dvec3 FinalGather::direct_sample(const dvec3& y, const dvec3& n, std::uint32_t s
     // (1 / kEmitterRays) of the unoccluded light w = F * (M.r + M.g + M.b); the others by
     // Russian roulette, kept with probability w * kEmitterRays / W (W the sum of every w) and
     // then weighted by its inverse. Unbiased, at most about kEmitterRays shadow rays.
-    static thread_local std::vector<std::pair<std::uint32_t, double>> seen;
+    struct Seen {
+        std::uint32_t polygon;
+        double F, w;
+    };
+    static thread_local std::vector<Seen> seen;
     seen.clear();
     const Scene& scene = h_->scene();
     double total = 0;
@@ -190,18 +193,17 @@ dvec3 FinalGather::direct_sample(const dvec3& y, const dvec3& n, std::uint32_t s
         const double w = F * (M.x + M.y + M.z);
         if (!(w > 0)) continue;
         total += w;
-        seen.emplace_back(e, F);
+        seen.push_back({e, F, w});
     }
     dvec3 E(0.0);
-    for (const auto& [e, F] : seen) {
-        const Polygon& P = scene.polygons[e];
-        const dvec3 M = scene.material_of(P).exitance();
-        const double keep = std::min(1.0, F * (M.x + M.y + M.z) * kEmitterRays / total);
+    for (const Seen& s : seen) {
+        const double keep = std::min(1.0, s.w * kEmitterRays / total);
         if (keep < 1 && rng.uniform() >= keep) continue;
+        const Polygon& P = scene.polygons[s.polygon];
         const double pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
         const dvec3 z = area_point(P.v.data(), P.count, pick, u1, u2);
-        if (bvh_->occluded(lifted(y, n), z, self, e)) continue;
-        E += F / keep * glazing_->between(y, z) * M;
+        if (bvh_->occluded(lifted(y, n), z, self, s.polygon)) continue;
+        E += s.F / keep * glazing_->between(y, z) * scene.material_of(P).exitance();
     }
     return E + luminaires(y, n, self);
 }
