@@ -201,7 +201,7 @@ class PySolver {
 
     py::array_t<double> irradiance(const py::handle& points, const py::handle& normals, bool gather,
                                    int gather_rays, double gather_angle, double gather_error,
-                                   std::uint64_t seed) {
+                                   double gather_bright, std::uint64_t seed) {
         const std::vector<dvec3> p = rows3(points, "points");
         const std::vector<dvec3> n = rows3(normals, "normals");
         if (p.size() != n.size())
@@ -214,6 +214,7 @@ class PySolver {
         go.rays = gather_rays;
         go.emitter_angle = gather_angle;
         go.indirect_error = gather_error;
+        go.bright_factor = gather_bright;
         go.seed = seed;
         validate_gather_options(go);
         std::vector<ProbeValue> values;
@@ -353,6 +354,7 @@ PYBIND11_MODULE(hemirad, m) {
              py::kw_only(), py::arg("gather") = true, py::arg("gather_rays") = GatherOptions{}.rays,
              py::arg("gather_angle") = GatherOptions{}.emitter_angle,
              py::arg("gather_error") = GatherOptions{}.indirect_error,
+             py::arg("gather_bright") = GatherOptions{}.bright_factor,
              py::arg("seed") = GatherOptions{}.seed,
              "Irradiance [W unit^-2] at points on surfaces facing `normals`, an (N, 3) array, "
              "as `hemirad solve --probes` computes it (final gather unless gather=False; "

@@ -14,6 +14,7 @@
 #include "hemirad/error.h"
 #include "hemirad/form_factors.h"
 #include "hemirad/readout.h"
+#include "solver/bright_leaves.h"
 #include "solver/sky_light.h"
 #include "solver/sun_light.h"
 
@@ -42,6 +43,8 @@ constexpr int kMaxOpeningSide = 16;
 /// A traced path's hit casts about this many shadow rays to emitter polygons (those that hold
 /// a share of 1 / kEmitterRays of their light or more, and others by Russian roulette).
 constexpr double kEmitterRays = 8;
+/// The indirect rays sample at most this many bright leaves (bright_leaves.h), the brightest.
+constexpr std::size_t kMaxBrightLeaves = std::size_t(1) << 16;
 
 bool nonzero(const dvec3& v) {
     return v.x > 0 || v.y > 0 || v.z > 0;
@@ -59,6 +62,8 @@ void validate_gather_options(const GatherOptions& o) {
     if (o.sky_cells < 4 || o.sky_cells > 256 || o.sky_split < 1 || o.sky_split > 32)
         throw InputError("gather sky cells " + std::to_string(o.sky_cells) + " and split " +
                          std::to_string(o.sky_split) + " must be in 4..256 and 1..32");
+    if (!(o.bright_factor == 0 || (o.bright_factor >= 1 && o.bright_factor <= 1e6)))
+        throw InputError("--gather-bright " + num(o.bright_factor) + " must be 0 or in [1, 1e6]");
     if (o.threads < 0)
         throw InputError("gather threads " + std::to_string(o.threads) + " must be >= 0");
 }
@@ -74,6 +79,7 @@ FinalGather::FinalGather(const Hierarchy& h, const GatherOptions& options)
     offset_ = 1e-9 * bounds_.diagonal();
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p)
         leaf_size_.push_back(std::sqrt(scene.polygons[p].area) / double(1u << h.depth(p)));
+    bright_ = std::make_unique<BrightLeaves>(h, options_.bright_factor, kMaxBrightLeaves);
 }
 
 FinalGather::~FinalGather() = default;
@@ -209,7 +215,7 @@ dvec3 FinalGather::direct_sample(const dvec3& y, const dvec3& n, std::uint32_t s
 }
 
 dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_t self, Rng& rng,
-                             int bounce, std::uint64_t& casts) const {
+                             int bounce, std::uint64_t& casts, FirstHit* first) const {
     const Scene& scene = h_->scene();
     Hit hit;
     ++casts;
@@ -220,6 +226,18 @@ dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_
         return dvec3(std::numbers::pi * scene.sky->radiance(glm::normalize(dir)) *
                      glazing_->along(origin, dir, std::numeric_limits<double>::infinity()));
     }
+    if (first) {
+        first->polygon = hit.polygon;
+        first->u = hit.u;
+        first->v = hit.v;
+        first->distance = hit.t * glm::length(dir);
+    }
+    return shade(origin, dir, hit, rng, bounce, casts);
+}
+
+dvec3 FinalGather::shade(const dvec3& origin, const dvec3& dir, const Hit& hit, Rng& rng,
+                         int bounce, std::uint64_t& casts) const {
+    const Scene& scene = h_->scene();
     if (!hit.front) return dvec3(0.0);
     // Through window panes: what comes back is attenuated by them.
     const double through = glazing_->along(origin, dir, hit.t);
@@ -239,13 +257,9 @@ dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_
         // direct light sampled there plus one more cosine ray, traced on the same way. One
         // sample each; the primary rays average them.
         const dvec3 direct_y = direct_sample(y, q.normal, hit.polygon, rng);
-        dvec3 t, b;
-        orthonormal_basis(q.normal, t, b);
-        const double u1 = rng.uniform(), u2 = rng.uniform();
-        const dvec3 next = cosine_direction(q.normal, t, b, u1, u2);
         const dvec3 y_off = y + offset_ * q.normal;
         return through * rho *
-               (direct_y + reflected(y_off, next, hit.polygon, rng, bounce + 1, casts));
+               (direct_y + onward(y_off, q.normal, hit.polygon, rng, bounce + 1, casts));
     }
     if (distance < kGapLeaves * leaf) {
         // In a gap far thinner than a leaf (two surfaces almost touching: an object sunk into
@@ -253,6 +267,62 @@ dvec3 FinalGather::reflected(const dvec3& origin, const dvec3& dir, std::uint32_
         return through * rho * direct_sample(y, q.normal, hit.polygon, rng);
     }
     return through * rho * irradiance_at(*h_, SurfacePoint{hit.polygon, hit.u, hit.v, 0.0});
+}
+
+dvec3 FinalGather::bright_sample(const dvec3& origin, const dvec3& n, std::uint32_t self, Rng& rng,
+                                 int bounce, std::uint64_t& casts) const {
+    const double pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+    const BrightLeaves::Sample s = bright_->sample(pick, u1, u2, u3);
+    if (s.polygon == self) return dvec3(0.0);
+    const dvec3 to = s.point - origin;
+    const double r = glm::length(to);
+    if (!(r > 0)) return dvec3(0.0);
+    const dvec3 dir = to / r;
+    const double cos_x = glm::dot(dir, n);
+    const double cos_y = -glm::dot(dir, h_->scene().polygons[s.polygon].normal);
+    if (!(cos_x > 0 && cos_y > 0)) return dvec3(0.0);
+    Hit hit;
+    ++casts;
+    // Seen when the ray's first hit is the sampled polygon (a plane: at the sampled point).
+    if (!bvh_->intersect(origin, dir, 1e300, hit, self) || hit.polygon != s.polygon)
+        return dvec3(0.0);
+    const double p_cos = cos_x / std::numbers::pi;
+    const double p_bright = s.density * r * r / cos_y;
+    return shade(origin, dir, hit, rng, bounce, casts) * (p_cos / (p_cos + p_bright));
+}
+
+dvec3 FinalGather::onward(const dvec3& origin, const dvec3& n, std::uint32_t self, Rng& rng,
+                          int bounce, std::uint64_t& casts) const {
+    if (bright_->empty()) {
+        dvec3 t, b;
+        orthonormal_basis(n, t, b);
+        const double u1 = rng.uniform(), u2 = rng.uniform();
+        return reflected(origin, cosine_direction(n, t, b, u1, u2), self, rng, bounce, casts);
+    }
+    // One-sample multiple importance sampling: a cosine ray or a bright leaf, even odds.
+    if (rng.uniform() < 0.5) return 2.0 * cosine_sample(origin, n, self, rng, bounce, casts);
+    return 2.0 * bright_sample(origin, n, self, rng, bounce, casts);
+}
+
+dvec3 FinalGather::cosine_sample(const dvec3& origin, const dvec3& n, std::uint32_t self, Rng& rng,
+                                 int bounce, std::uint64_t& casts) const {
+    dvec3 t, b;
+    orthonormal_basis(n, t, b);
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    const dvec3 dir = cosine_direction(n, t, b, u1, u2);
+    FirstHit first;
+    const dvec3 v = reflected(origin, dir, self, rng, bounce, casts, &first);
+    return v * cosine_weight(dir, n, first);
+}
+
+double FinalGather::cosine_weight(const dvec3& dir, const dvec3& n, const FirstHit& first) const {
+    if (first.polygon == kNoPolygon) return 1.0; // escaped
+    const double density = bright_->density(first.polygon, first.u, first.v);
+    if (!(density > 0)) return 1.0;
+    const double cos_y = -glm::dot(dir, h_->scene().polygons[first.polygon].normal);
+    const double p_cos = glm::dot(dir, n) / std::numbers::pi;
+    const double p_bright = density * first.distance * first.distance / std::max(cos_y, 1e-12);
+    return p_cos / (p_cos + p_bright);
 }
 
 dvec3 FinalGather::indirect(const dvec3& x, const dvec3& n, std::uint32_t self,
@@ -286,8 +356,16 @@ dvec3 FinalGather::indirect_pass(const dvec3& x, const dvec3& n, std::uint32_t s
     for (int j = 0; j < m; ++j)
         for (int i = 0; i < m; ++i) {
             const double u1 = (i + rng.uniform()) / m, u2 = (j + rng.uniform()) / m;
-            const dvec3 v =
-                reflected(origin, cosine_direction(n, t, b, u1, u2), self, rng, 0, casts);
+            const dvec3 dir = cosine_direction(n, t, b, u1, u2);
+            FirstHit first;
+            dvec3 v = reflected(origin, dir, self, rng, 0, casts, &first);
+            if (!bright_->empty()) {
+                // Multiple importance sampling (balance heuristic, one sample of each kind a
+                // ray): either way a sample brings rho H * p_cos / (p_cos + p_bright), both
+                // densities per solid angle at x.
+                if (nonzero(v)) v *= cosine_weight(dir, n, first);
+                v += bright_sample(origin, n, self, rng, 0, casts);
+            }
             sum += v;
             const double y = v.x + v.y + v.z;
             if (i % 2 == 1) pair_variance += (y - previous) * (y - previous);

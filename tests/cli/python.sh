@@ -78,6 +78,8 @@ raises(ValueError, ["not finite"],
        lambda: s.irradiance(np.full((1, 3), np.nan), np.array([[0.0, 1.0, 0.0]])))
 raises(ValueError, ["--gather-rays"],
        lambda: s.irradiance(rows[:1, 0:3], rows[:1, 3:6], gather_rays=1))
+raises(ValueError, ["--gather-bright", "0.5"],
+       lambda: s.irradiance(rows[:1, 0:3], rows[:1, 3:6], gather_bright=0.5))
 # Every solver option by its key (the options table, hemirad/solver_options.h): each one set
 # alone to another value comes back, and leaves the others at their defaults.
 table = hemirad.solver_option_table()

@@ -48,6 +48,10 @@ void add_export_options(ArgParser& args, ExportOptions& o) {
                 "above E is gathered again with up to 16 times the rays [0, 1); 0 = never");
     args.option("--gather-angle", &o.gather_options.emitter_angle, "A",
                 "final gather: widest emitter cell seen from a point, radians (0..1]");
+    args.option("--gather-bright", &o.gather_options.bright_factor, "F",
+                "final gather: the indirect rays also sample the leaf patches brighter than F "
+                "times the scene's mean (a lamp's shade, the ceiling over an uplight), by "
+                "multiple importance sampling; 0 or [1, 1e6]; 0 = cosine rays alone");
 }
 
 std::vector<GridSpec> validate_export_options(const ExportOptions& o) {

@@ -28,7 +28,7 @@ struct ExportOptions {
     std::string resume;             ///< --resume FILE: continue from a saved state
     std::string gather = "on";      ///< --gather on|off: probes and grids by final gather
     bool discontinuities = true;    ///< --discontinuities (an image option): lightmap detail
-    GatherOptions gather_options;   ///< --gather-rays, --gather-angle
+    GatherOptions gather_options;   ///< --gather-rays, --gather-error, --gather-angle, ...
 };
 void add_export_options(ArgParser& args, ExportOptions& o);
 /// Checks combinations and parses the grid specs. Throws InputError.
