@@ -60,9 +60,9 @@ BrightLeaves::BrightLeaves(const Hierarchy& h, double factor, std::size_t max_le
         if (!(c.leaf.area > 0)) continue;
         const double p = c.B * c.leaf.area / total;
         running += p;
-        by_node_.emplace(h.node_id({c.leaf.polygon, std::uint32_t(h.depth(c.leaf.polygon)),
-                                    c.leaf.index}),
-                         std::uint32_t(leaves_.size()));
+        by_node_.emplace(
+            h.node_id({c.leaf.polygon, std::uint32_t(h.depth(c.leaf.polygon)), c.leaf.index}),
+            std::uint32_t(leaves_.size()));
         leaves_.push_back(c.leaf);
         prob_.push_back(p);
         cdf_.push_back(running);
