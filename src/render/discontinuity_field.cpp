@@ -68,6 +68,7 @@ DiscontinuityField::DiscontinuityField(const Hierarchy& h) : h_(&h) {
     go.threads = 1;
     go.jitter = false;      // no noise from point to point
     go.coarse_test = false; // no step where a coarse ray first meets an occluder
+    go.bright_factor = 0;   // direct light only: no indirect rays to steer
     point_ = std::make_unique<FinalGather>(h, go);
     go.coarse_test = true; // leaf means: the whole-emitter shortcut where all is visible
     const FinalGather mean(h, go);
