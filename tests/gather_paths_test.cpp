@@ -5,8 +5,9 @@
 //
 // The hierarchy is not solved (its leaves hold nothing), and each polygon is one leaf (0.125
 // wide, so that every hit in the cube lies within the gather's 30 leaf sizes): everything the
-// gather finds beyond the point's own direct light comes from its traced paths, up to 8
-// bounces, rho^9 = 2e-5 short of the exact sum. At each traced hit about 8 of the emitter
+// gather finds beyond the point's own direct light comes from its traced paths: 8 bounces,
+// then Russian roulette (kept with probability rho, weighted by 1 / rho), exact in
+// expectation (at most 256 bounces). At each traced hit about 8 of the emitter
 // polygons get a shadow ray and the rest are left to Russian roulette; with the roulette's
 // weights left out, E reads 22-26 % low.
 //
@@ -34,10 +35,10 @@ namespace {
 
 constexpr double kRho = 0.3;
 
-Scene furnace() {
+Scene furnace(double rho = kRho) {
     BuiltinOptions bo;
     bo.subdiv = 8;
-    bo.rho = kRho;
+    bo.rho = rho;
     return make_builtin("furnace", bo);
 }
 
@@ -50,7 +51,7 @@ Hierarchy unsolved(const Scene& scene) {
 /// The furnace's irradiance M / (1 - rho) at points on the floor's plane (y = 0, normal +y)
 /// away from and near the walls, and one inside the box facing +x; all given as points in free
 /// space (no polygon).
-void expect_furnace_irradiance(const Hierarchy& h) {
+void expect_furnace_irradiance(const Hierarchy& h, double rho = kRho, double tolerance = 0.01) {
     const Scene& scene = h.scene();
     ASSERT_EQ(scene.polygons.size(), 384u);
     const double M = scene.material_of(scene.polygons[0]).exitance().x;
@@ -59,7 +60,7 @@ void expect_furnace_irradiance(const Hierarchy& h) {
     GatherOptions go;
     go.indirect_error = 0; // one pass of 1024 rays: the test is on the mean, not the re-gather
     const FinalGather gather(h, go);
-    const double expected = M / (1 - kRho);
+    const double expected = M / (1 - rho);
     const std::vector<GatherPoint> points = {
         {dvec3(0.5, 0.0, 0.5), dvec3(0, 1, 0), GatherPoint::kNoSurface},
         {dvec3(0.07, 0.0, 0.93), dvec3(0, 1, 0), GatherPoint::kNoSurface},
@@ -68,7 +69,7 @@ void expect_furnace_irradiance(const Hierarchy& h) {
     for (std::size_t k = 0; k < points.size(); ++k) {
         const GatherValue v = gather.at(points[k], k);
         EXPECT_NEAR(v.direct.x, M, 1e-6) << "point " << k;
-        EXPECT_NEAR(v.E().x, expected, 0.01 * expected) << "point " << k;
+        EXPECT_NEAR(v.E().x, expected, tolerance * expected) << "point " << k;
     }
 }
 
@@ -96,4 +97,14 @@ TEST(GatherPaths, SamplingTheSolutionsBrightLeavesLeavesTheFurnaceUnbiased) {
     h.push_pull_all();
     ASSERT_EQ(lit, 16);
     expect_furnace_irradiance(h);
+}
+
+// A furnace of reflectance 0.9: nine tenths of E comes after a bounce, and 39 % of it (0.9^9)
+// after more than 8. The paths go on past their 8th bounce by Russian roulette, so E stays
+// exact in expectation; stopped there and reading the (empty) solution, E reads 39 % low
+// (measured). Tolerance 5 %: over 9 seeds E's standard deviation is 1.3 % of E (the largest
+// error 3.3 %).
+TEST(GatherPaths, ABrightFurnaceIsGatheredPastEightBounces) {
+    const Scene scene = furnace(0.9);
+    expect_furnace_irradiance(unsolved(scene), 0.9, 0.05);
 }

@@ -31,15 +31,16 @@
 // the leaves hold too little of the light that reaches them after several bounces, since the
 // hemicubes see such places through narrow openings. So the first hit of every ray, and a later
 // hit nearer than 30 leaf sizes of Q, estimates H(y) at y itself instead: the direct light at y
-// plus rho H of one more cosine ray from y, traced on the same way, for at most 8 bounces: the
-// solution is read one bounce away at the nearest (its errors averaged over the hemispheres of
-// all the first hits, and damped by their reflectance), and where a path leaves the clutter.
+// plus rho H of one more cosine ray from y, traced on the same way, for 8 bounces and past
+// them by Russian roulette (kept with the hit's largest reflectance and weighted by its
+// inverse; at most 256 bounces): the solution is read one bounce away at the nearest (its
+// errors averaged over the hemispheres of all the first hits, and damped by their
+// reflectance), and only where a path leaves the clutter, never inside a closed cavity.
 // The direct light at a hit: one shadow ray to each point luminaire; one to each emitter
 // polygon that holds an eighth or more of the hit's unoccluded emitter light (its exact form
 // factor times the ray's visibility), and to the others by Russian roulette, in proportion to
 // their light and weighted by its inverse (unbiased, about 8 rays however many emitter
-// polygons). After the last traced bounce, a hit nearer than a tenth of a leaf (a gap, an
-// object sunk into another) brings its direct light only.
+// polygons).
 //
 // Bright leaves: a small surface far brighter than the rest (a desk lamp's shade or the desk
 // under it, the ceiling above an uplight, a wall beside a spot) is hit by few of the cosine

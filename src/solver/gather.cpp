@@ -28,10 +28,10 @@ constexpr int kMaxCellLevel = 3;  ///< at most 8 x 8 coarse cells, 32 x 32 fine 
 /// from the solution: the path goes on from it (the direct light sampled there, one more
 /// cosine ray)...
 constexpr double kTracedLeaves = 30;
-constexpr int kTracedBounces = 8; ///< ...for at most this many bounces
-/// A hit nearer than this many leaf sizes after the last traced bounce is in a gap: the leaves
-/// there average light from outside it, so the hit brings its direct light only.
-constexpr double kGapLeaves = 0.1;
+/// ...for this many bounces, and past them by Russian roulette (kept with the hit's largest
+/// reflectance, weighted by its inverse), for at most kMaxTracedBounces.
+constexpr int kTracedBounces = 8;
+constexpr int kMaxTracedBounces = 256;
 /// A noisy point is gathered again with at most 4 x 4 = 16 times the rays, and at most this
 /// many ray casts for each first-pass ray (16 times the two casts of a ray with one bounce).
 constexpr int kMaxRegatherSide = 4;
@@ -248,7 +248,17 @@ dvec3 FinalGather::shade(const dvec3& origin, const dvec3& dir, const Hit& hit, 
     const double distance = hit.t * glm::length(dir);
     const double leaf = leaf_size_[hit.polygon];
     const dvec3 y = origin + hit.t * dir;
-    if ((bounce == 0 || distance < kTracedLeaves * leaf) && bounce < kTracedBounces) {
+    if (bounce == 0 || distance < kTracedLeaves * leaf) {
+        // Past kTracedBounces the path goes on by Russian roulette: in a closed cavity (the
+        // inside of a box on a shelf, of a wall slab) it never leaves the near hits, and
+        // reading the leaves there after a fixed count of bounces would bring whatever light
+        // they hold (with reflectance 0.98, 85 % of it after 8 bounces), where no light
+        // enters; near a narrow opening it finds the light that comes after many bounces.
+        double keep = 1;
+        if (bounce >= kTracedBounces) {
+            keep = std::min(1.0, std::max({rho.x, rho.y, rho.z}));
+            if (bounce >= kMaxTracedBounces || rng.uniform() >= keep) return dvec3(0.0);
+        }
         // Near the point a leaf's value is too coarse (a contact shadow, a corner), and in
         // clutter (a cavity behind furniture, under a shelf) the leaves hold too little of the
         // light that reaches them after several bounces; at the first hit, the solution's
@@ -258,13 +268,8 @@ dvec3 FinalGather::shade(const dvec3& origin, const dvec3& dir, const Hit& hit, 
         // sample each; the primary rays average them.
         const dvec3 direct_y = direct_sample(y, q.normal, hit.polygon, rng);
         const dvec3 y_off = y + offset_ * q.normal;
-        return through * rho *
+        return through * rho / keep *
                (direct_y + onward(y_off, q.normal, hit.polygon, rng, bounce + 1, casts));
-    }
-    if (distance < kGapLeaves * leaf) {
-        // In a gap far thinner than a leaf (two surfaces almost touching: an object sunk into
-        // another, a pocket), the leaves beyond average light from outside the gap.
-        return through * rho * direct_sample(y, q.normal, hit.polygon, rng);
     }
     return through * rho * irradiance_at(*h_, SurfacePoint{hit.polygon, hit.u, hit.v, 0.0});
 }
