@@ -50,6 +50,20 @@ bool nonzero(const dvec3& v) {
     return v.x > 0 || v.y > 0 || v.z > 0;
 }
 
+/// The density per solid angle at x of a bright-leaf sample (BrightLeaves::Sample::density,
+/// per unit area) at distance r from x, seen at cos_y from its polygon's normal.
+double per_solid_angle(double density, double r, double cos_y) {
+    return density * r * r / std::max(cos_y, 1e-12);
+}
+
+/// The balance heuristic's weight (Veach & Guibas 1995) of a direction at cos_x from the
+/// normal at x that the bright leaves draw with density p_bright per solid angle: a cosine
+/// ray draws it with cos_x / pi.
+double balance(double cos_x, double p_bright) {
+    const double p_cos = cos_x / std::numbers::pi;
+    return p_cos / (p_cos + p_bright);
+}
+
 } // namespace
 
 void validate_gather_options(const GatherOptions& o) {
@@ -291,19 +305,14 @@ dvec3 FinalGather::bright_sample(const dvec3& origin, const dvec3& n, std::uint3
     // Seen when the ray's first hit is the sampled polygon (a plane: at the sampled point).
     if (!bvh_->intersect(origin, dir, 1e300, hit, self) || hit.polygon != s.polygon)
         return dvec3(0.0);
-    const double p_cos = cos_x / std::numbers::pi;
-    const double p_bright = s.density * r * r / cos_y;
-    return shade(origin, dir, hit, rng, bounce, casts) * (p_cos / (p_cos + p_bright));
+    return shade(origin, dir, hit, rng, bounce, casts) *
+           balance(cos_x, per_solid_angle(s.density, r, cos_y));
 }
 
 dvec3 FinalGather::onward(const dvec3& origin, const dvec3& n, std::uint32_t self, Rng& rng,
                           int bounce, std::uint64_t& casts) const {
-    if (bright_->empty()) {
-        dvec3 t, b;
-        orthonormal_basis(n, t, b);
-        const double u1 = rng.uniform(), u2 = rng.uniform();
-        return reflected(origin, cosine_direction(n, t, b, u1, u2), self, rng, bounce, casts);
-    }
+    // Without bright leaves a cosine ray's weight is 1.
+    if (bright_->empty()) return cosine_sample(origin, n, self, rng, bounce, casts);
     // One-sample multiple importance sampling: a cosine ray or a bright leaf, even odds.
     if (rng.uniform() < 0.5) return 2.0 * cosine_sample(origin, n, self, rng, bounce, casts);
     return 2.0 * bright_sample(origin, n, self, rng, bounce, casts);
@@ -325,9 +334,7 @@ double FinalGather::cosine_weight(const dvec3& dir, const dvec3& n, const FirstH
     const double density = bright_->density(first.polygon, first.u, first.v);
     if (!(density > 0)) return 1.0;
     const double cos_y = -glm::dot(dir, h_->scene().polygons[first.polygon].normal);
-    const double p_cos = glm::dot(dir, n) / std::numbers::pi;
-    const double p_bright = density * first.distance * first.distance / std::max(cos_y, 1e-12);
-    return p_cos / (p_cos + p_bright);
+    return balance(glm::dot(dir, n), per_solid_angle(density, first.distance, cos_y));
 }
 
 dvec3 FinalGather::indirect(const dvec3& x, const dvec3& n, std::uint32_t self,
