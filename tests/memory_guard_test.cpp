@@ -34,7 +34,10 @@ TEST(MemoryGuard, EstimateCountsEveryNode) {
     EXPECT_EQ(e.gl, 0u);
     o.ff = "hybrid";
     const MemoryEstimate g = estimate_memory(s, discretise(s, o.hierarchy), o);
-    EXPECT_EQ(g.provider, g.nodes * 20);
+    // 20 bytes a node, 160 a polygon for the BVH of centre_seen()'s ray casts.
+    EXPECT_EQ(g.provider, g.nodes * 20 + s.polygons.size() * 160);
+    o.ff = "hemicube"; // pixels only: no ray casts
+    EXPECT_EQ(estimate_memory(s, discretise(s, o.hierarchy), o).provider, g.nodes * 20);
     // 8x8 patch IDs with mipmaps, 512x384 framebuffer at the default --max-resolution 256.
     EXPECT_EQ(g.gl, 8u * 8 * 8 * 4 / 3 + 512u * 384 * 36);
 }

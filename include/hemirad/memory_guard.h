@@ -28,7 +28,7 @@ struct MemoryEstimate {
     std::uint64_t nodes = 0, leaves = 0;
     int deepest = 0;             ///< deepest quadtree level of any polygon
     std::uint64_t hierarchy = 0; ///< node storage [bytes]
-    std::uint64_t provider = 0;  ///< the form-factor provider's per-node storage [bytes]
+    std::uint64_t provider = 0;  ///< the form-factor provider's per-node storage and BVH [bytes]
     std::uint64_t gl = 0;        ///< GL textures, framebuffer and read-back [bytes]
     std::uint64_t total() const { return hierarchy + provider + gl; }
 };

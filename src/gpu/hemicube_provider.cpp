@@ -20,6 +20,7 @@
 
 #include "core/parallel.h"
 #include "core/timer.h"
+#include "ff/bvh.h"
 #include "gpu/hemicube.h"
 #include "gpu/hemicube_visibility.h"
 #include "gpu/pixel_runs.h"
@@ -82,6 +83,7 @@ class HemicubeProvider final : public FormFactorProvider {
             centre_.push_back(patch_geometry(poly, 0, 0).centre);
             radius_.push_back(reach(poly.v, poly.count, centre_.back()));
         }
+        if (mode_ != Mode::Hemicube) bvh_ = std::make_unique<Bvh>(scene); // centre_seen()
         area_ = std::make_unique<std::atomic<float>[]>(total);
         for (std::size_t k = 0; k < total; ++k) area_[k].store(-1.f, std::memory_order_relaxed);
         diagonal_ = scene.bounds().diagonal();
@@ -1116,8 +1118,8 @@ class HemicubeProvider final : public FormFactorProvider {
     // (the oracle can coarsen within a polygon, not below one): its light would be lost,
     // and the rows of closed scenes of many small polygons would sum under 1. Every polygon
     // in front of the shooter that no pixel shows is linked whole, with its analytic value
-    // computed here (its mean, near the shooter: near_mean), if its centre is seen in the
-    // hemicube taken as a depth map (HemicubeVisibility::visible_in_depth_map).
+    // computed here (its mean, near the shooter: near_mean), if its centre is seen
+    // (centre_seen).
     LinkJob missed_polygons_job(const Shooter& shooter, const gpu::HemicubeVisibility& vis) const {
         const std::size_t n = mode_ == Mode::Hemicube ? 0 : scene_->polygons.size();
         return {n, chunk_count(n, kChunkPolygons, 0),
@@ -1135,7 +1137,7 @@ class HemicubeProvider final : public FormFactorProvider {
         const dvec3& centre = centre_[p];
         if (glm::dot(poly.normal, centre - shooter.geometry.centre) >= 0)
             return; // faces away from the shooter
-        if (!vis.visible_in_depth_map(centre, p)) return;
+        if (!centre_seen(shooter, vis, p)) return;
         const double f = near_mean(shooter, {p, 0, 0}, poly.area,
                                    float(analytic_at(shooter, centre, poly.normal)));
         if (f <= 0) return;
@@ -1143,6 +1145,22 @@ class HemicubeProvider final : public FormFactorProvider {
         l.receiver = {p, 0, 0};
         l.ff = l.ff_analytic = float(f);
         links.push_back(l);
+    }
+
+    // Is the centre of polygon p, which no pixel shows, seen from the shooter's eye? Not if
+    // the hemicube taken as a depth map hides it (HemicubeVisibility::visible_in_depth_map),
+    // nor if the segment to it crosses a polygon (a ray cast). The depth map alone passed a
+    // centre whose pixel shows nothing, or its own twin, while things smaller than a pixel
+    // hide it: in the office glb, the LED bars' first shots linked faces inside a closed tea
+    // container on a shelf 6 m away (reflectance 0.985), which then lit its inside. A point
+    // cluster's eye stands among its polygons, which its hemicubes leave out (hidden_), and
+    // which a ray from it would cross: the depth map alone decides there. (A flat cluster's
+    // eye lies in the plane of its polygons, which a ray into its front does not cross.)
+    bool centre_seen(const Shooter& shooter, const gpu::HemicubeVisibility& vis,
+                     std::uint32_t p) const {
+        if (!vis.visible_in_depth_map(centre_[p], p)) return false;
+        if (hidden_ && point_) return true;
+        return !bvh_->occluded(shooter.geometry.centre, centre_[p], shooter.address.polygon, p);
     }
 
     // Adds the link of node a: analytic F(j->S), and the pixel sum as A_S F(S->j).
@@ -1237,6 +1255,7 @@ class HemicubeProvider final : public FormFactorProvider {
     }
 
     std::unique_ptr<gl::Context> context_;
+    std::unique_ptr<Bvh> bvh_; ///< the scene's polygons, for centre_seen()'s ray casts
     std::unique_ptr<gpu::HemicubeRenderer> renderer_;
     std::deque<gpu::HemicubeLayout> layouts_; // deque: references stay valid as it grows
     std::vector<std::uint64_t> base_;

@@ -20,6 +20,10 @@ namespace {
 
 constexpr std::uint64_t kNodeBytes = sizeof(Hierarchy::Node) + 1; // + Solver's view code
 constexpr std::uint64_t kGpuNodeBytes = 5 * 4; // pixel_sum_, analytic_, area_, seen_, below_seen_
+/// hybrid and analytic: the scene's polygons in a BVH (ff/bvh.h: a primitive of 128 bytes, about
+/// half a node of 56, a 4-byte index), whose ray casts check the centres of polygons no pixel
+/// shows.
+constexpr std::uint64_t kBvhPolygonBytes = 160;
 
 /// First number on the line of /proc/meminfo that starts with `key` [bytes], or 0.
 std::uint64_t meminfo(const char* key) {
@@ -59,6 +63,7 @@ MemoryEstimate estimate_memory(const Scene& scene, const Discretisation& disc,
     e.hierarchy = e.nodes * kNodeBytes;
     if (is_gpu_provider(options.ff)) {
         e.provider = e.nodes * kGpuNodeBytes;
+        if (options.ff != "hemicube") e.provider += scene.polygons.size() * kBvhPolygonBytes;
         const std::uint64_t side = std::uint64_t(1) << e.deepest;
         e.gl = side * side * 8 * 4 / 3; // RGBA16UI patch IDs with mipmaps
         const GpuProviderOptions& g = options.provider.gpu;
@@ -67,7 +72,6 @@ MemoryEstimate estimate_memory(const Scene& scene, const Discretisation& disc,
         const std::uint64_t pixels = (2 * r) * (r + r / 2);
         e.gl += pixels * (16 + 4 + 16); // colour, depth, read-back
     }
-    (void)scene;
     return e;
 }
 
