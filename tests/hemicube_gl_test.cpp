@@ -58,6 +58,23 @@ Shooter whole_polygon_shooter(const Scene& s, std::uint32_t p) {
     return sh;
 }
 
+// Each polygon one node.
+Discretisation whole_polygons(const Scene& scene) {
+    HierarchyOptions ho;
+    ho.max_depth = 0;
+    ho.patch_size = 1;
+    return discretise(scene, ho);
+}
+
+// The hybrid links of one shot at resolution res, each polygon one node.
+std::vector<Link> hybrid_links(const Scene& scene, const Shooter& shooter, int res) {
+    const Discretisation disc = whole_polygons(scene);
+    auto provider = gpu_provider("hybrid", scene, disc, res);
+    std::vector<Link> links;
+    provider->shoot(shooter, links);
+    return links;
+}
+
 // --- accuracy bar: paper 000's cube, 13 x 13 polygons per face ------------------------------
 constexpr double kParallel = 0.199824895698; // Howell C-11 (1,1,1)
 constexpr double kAdjacent = 0.200043776075; // Howell C-14 (1,1,1)
@@ -114,10 +131,7 @@ INSTANTIATE_TEST_SUITE_P(
 // The hybrid row of polygon 0 (the lamp, its own group) at resolution 256, each polygon one
 // node.
 double lamp_row(const Scene& scene) {
-    HierarchyOptions ho;
-    ho.max_depth = 0;
-    ho.patch_size = 1;
-    const Discretisation disc = discretise(scene, ho);
+    const Discretisation disc = whole_polygons(scene);
     auto provider = gpu_provider("hybrid", scene, disc, 256);
     return group_form_factors(scene, disc, *provider, 0).row_sum;
 }
@@ -256,15 +270,8 @@ TEST(NearReceivers, BoardBeforeTheDarkHalfOfAWallSeesTheDarkness) {
     expected /= n * n;
     even /= n * n;
     ASSERT_GT(even, 10 * expected); // the case means something
-    HierarchyOptions ho;
-    ho.max_depth = 0;
-    ho.patch_size = 1;
-    const Discretisation disc = discretise(scene, ho);
-    auto provider = gpu_provider("hybrid", scene, disc, 256);
-    std::vector<Link> links;
-    provider->shoot(sh, links);
     double ff = -1;
-    for (const Link& l : links)
+    for (const Link& l : hybrid_links(scene, sh, 256))
         if (l.receiver.polygon == 1) ff = l.ff;
     ASSERT_GE(ff, 0) << "the board is not linked";
     EXPECT_NEAR(ff / expected - 1, 0, 0.03) << "expected " << expected << ", even " << even;
@@ -783,13 +790,7 @@ TEST(MissedPolygons, TheInsideOfAClosedBoxSmallerThanAPixelGetsNothing) {
         }
     const Scene scene = make_scene(polys, groups);
     ASSERT_GT(scene.polygons[0].normal.y, 0.99);
-    HierarchyOptions ho;
-    ho.max_depth = 0;
-    ho.patch_size = 10;
-    const Discretisation disc = discretise(scene, ho);
-    auto provider = gpu_provider("hybrid", scene, disc, 64);
-    std::vector<Link> links;
-    provider->shoot(whole_polygon_shooter(scene, 0), links);
+    const std::vector<Link> links = hybrid_links(scene, whole_polygon_shooter(scene, 0), 64);
     // The outer faces that face the floor's centre: the bottom, and (the box stands off the
     // centre at x > 0, z < 0) the sides facing -x and +z.
     int outer_linked = 0;
