@@ -52,6 +52,15 @@ struct ClusterShooter {
     std::vector<Plane> planes;
     /// Its polygons, sorted: not drawn (they do not occlude its light), never linked.
     std::vector<std::uint32_t> members;
+    /// Its polygons that carry the most light (up to kMaxSources, brightest first) and their
+    /// shares of the power: a receiver near a point cluster takes light only from those it
+    /// can see (a jar's inside, which the point sees from within, sees none of its outside).
+    struct Source {
+        std::uint32_t polygon = 0;
+        double share = 0;
+    };
+    static constexpr std::size_t kMaxSources = 16;
+    std::vector<Source> sources;
     double unshot_power = 0;   ///< sum over RGB [W]; providers may adapt to it
     double power_fraction = 1; ///< unshot_power / total unshot power now (0..1]
     /// A flat cluster (its polygons in one plane, facing `axis`) shoots instead as the

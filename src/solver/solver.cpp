@@ -109,6 +109,20 @@ constexpr double kLightOffCentre = 0.5;
 // this rule (at 0.5 and 0.65 too, for more shots).
 constexpr double kHiddenFromCentre = 0.8;
 
+/// A cluster's polygons that carry the most light, brightest first (ClusterShooter::sources).
+std::vector<ClusterShooter::Source> brightest_sources(const std::vector<std::uint32_t>& members,
+                                                      const std::vector<double>& power,
+                                                      double total) {
+    std::vector<ClusterShooter::Source> sources;
+    for (std::size_t i = 0; i < members.size(); ++i)
+        if (power[i] > 0) sources.push_back({members[i], power[i] / total});
+    const std::size_t n = std::min(sources.size(), ClusterShooter::kMaxSources);
+    std::partial_sort(sources.begin(), sources.begin() + std::ptrdiff_t(n), sources.end(),
+                      [](const auto& a, const auto& b) { return a.share > b.share; });
+    sources.resize(n);
+    return sources;
+}
+
 bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
@@ -653,6 +667,7 @@ bool Solver::shoot_cluster(ShotRecord& rec, std::uint32_t& polygon) {
         }
         c.unshot_power = weight;
         c.power_fraction = total > 0 ? std::min(1.0, weight / total) : 1.0;
+        c.sources = brightest_sources(c.members, member_power, weight);
 
         // A cluster not measured yet is measured on coarse hemicubes first, where the
         // provider has them: a refused one then costs a fraction of a shot.
