@@ -827,12 +827,12 @@ TEST(PointCluster, TheInsideOfAJarItsCentreIsInGetsNothing) {
     cluster.centre = c;
     cluster.radius = std::hypot(0.2, 0.15);
     cluster.unshot_power = 1;
-    cluster.sources = {{1, 0.5}};
+    cluster.sources = {{1, 0.5, true}}; // the centre is behind them all (the solver's marking)
     for (int axis = 0; axis < 3; ++axis)
         for (double side : {-1.0, 1.0}) {
             dvec3 n(0.0);
             n[axis] = side;
-            cluster.sources.push_back({std::uint32_t(polys.size()), 0.5 / 6});
+            cluster.sources.push_back({std::uint32_t(polys.size()), 0.5 / 6, true});
             polys.push_back(facing_square(c + outer * n, n, outer));  // out
             polys.push_back(facing_square(c + inner * n, -n, inner)); // in
             groups.push_back("out");
@@ -872,7 +872,7 @@ TEST(PointCluster, APanelAcrossAGapSeesItsLight) {
     cluster.normals = {{0, 0, 1}};
     cluster.weights = {1.0};
     cluster.members = {0};
-    cluster.sources = {{0, 1.0}};
+    cluster.sources = {{0, 1.0, true}}; // the centre is behind it
     auto provider = gpu_provider("hybrid", scene, whole_polygons(scene), 256);
     std::vector<Link> links;
     provider->shoot_cluster(cluster, links);

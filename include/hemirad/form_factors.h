@@ -52,12 +52,16 @@ struct ClusterShooter {
     std::vector<Plane> planes;
     /// Its polygons, sorted: not drawn (they do not occlude its light), never linked.
     std::vector<std::uint32_t> members;
-    /// Its polygons that carry the most light (up to kMaxSources, brightest first) and their
-    /// shares of the power: a receiver near a point cluster takes light only from those it
-    /// can see (a jar's inside, which the point sees from within, sees none of its outside).
+    /// Its polygons that carry the most light (up to kMaxSources, brightest first), their
+    /// shares of the power, and whether they do not see `centre` from in front (it lies
+    /// behind their plane, or a segment to it crosses a polygon): a receiver near a point
+    /// cluster takes light only from those it can see, and one that sees the centre is taken
+    /// to see what the centre sees (a jar's inside, which the point sees from within, sees
+    /// none of its outside).
     struct Source {
         std::uint32_t polygon = 0;
         double share = 0;
+        bool hidden_from_centre = false;
     };
     static constexpr std::size_t kMaxSources = 16;
     std::vector<Source> sources;

@@ -51,6 +51,9 @@ constexpr std::uint32_t kNoShooterPolygon = 0xFFFFFFFFu;
 /// A point cluster whose brightest polygons see less than this share of the light its point
 /// sends in front of them (share_seen) is no stand-in for them: it is reported enclosed.
 constexpr double kSeenEnough = 0.05;
+/// share_seen judges a receiver by ray casts to the sources that hold this share of the light
+/// of those facing it.
+constexpr double kJudgedShare = 0.9;
 
 /// The point of convex polygon `p` nearest to x.
 dvec3 nearest_point(const Polygon& p, const dvec3& x) {
@@ -291,20 +294,35 @@ class HemicubeProvider final : public FormFactorProvider {
         if (!bvh_ || c.sources.empty()) return 1.0;
         const dvec3 n = scene_->polygons[polygon].normal;
         const dvec3 from = x + lift * n;
-        double facing = 0, seen = 0;
-        for (const ClusterShooter::Source& s : c.sources) {
-            const Polygon& source = scene_->polygons[s.polygon];
+        // The sources that face it (brightest first), then rays to them until nine tenths of
+        // their light is judged (the rest is taken as seen as much); a source that sees the
+        // point from in front is taken to see what the point sees, without a ray.
+        std::array<std::uint8_t, ClusterShooter::kMaxSources> facing_sources;
+        std::size_t count = 0;
+        double facing = 0;
+        for (std::size_t k = 0; k < c.sources.size() && k < facing_sources.size(); ++k) {
+            const Polygon& source = scene_->polygons[c.sources[k].polygon];
             const dvec3 y = source.centroid();
-            if (!(glm::dot(source.normal, x - y) > lift) || !(glm::dot(n, y - x) > lift)) continue;
-            facing += s.share;
+            if (glm::dot(source.normal, x - y) > lift && glm::dot(n, y - x) > lift)
+                facing_sources[count++] = std::uint8_t(k), facing += c.sources[k].share;
+        }
+        double judged = 0, seen = 0;
+        for (std::size_t i = 0; i < count && judged < kJudgedShare * facing; ++i) {
+            const ClusterShooter::Source& s = c.sources[facing_sources[i]];
+            const Polygon& source = scene_->polygons[s.polygon];
+            judged += s.share;
+            if (!s.hidden_from_centre) { // it sees what the point sees
+                seen += s.share;
+                continue;
+            }
             // Across a gap (a panel millimetres in front of the source) the source's point
             // straight across, around a corner its centroid.
             const dvec3 across = nearest_point(source, x) + lift * source.normal;
             if (!bvh_->occluded(from, across, polygon, s.polygon) ||
-                !bvh_->occluded(from, y + lift * source.normal, polygon, s.polygon))
+                !bvh_->occluded(from, source.centroid() + lift * source.normal, polygon, s.polygon))
                 seen += s.share;
         }
-        return facing > 0 ? seen / facing : 0.0;
+        return judged > 0 ? seen / judged : 0.0;
     }
 
     // A cluster shoots from its centre over the whole sphere (shoot_sphere) with the
@@ -380,6 +398,14 @@ class HemicubeProvider final : public FormFactorProvider {
         const double R2 = c.radius * c.radius;
         const double eps = 1e-6 * std::max(c.radius, 1e-300);
         // Each link's receiver and share on threads (in chunks), the sums after, in order.
+        // Receivers near the point are judged by what its sources see (share_seen) where
+        // some of them do not see the point from in front (on the courtyard: 1.3 million
+        // receivers judged with 3.4 million rays in 1.4 s, where judging every near receiver
+        // of every point cluster by rays took 32 million rays, 6 s, and fixed the plant pots'
+        // leaks in the office lit by point sources as well).
+        const bool judge_seen =
+            bvh_ && std::any_of(c.sources.begin(), c.sources.end(),
+                                [](const auto& s) { return s.hidden_from_centre; });
         receivers_.resize(links.size());
         for_chunks(links.size(), chunk_count(links.size(), kChunkNodes, 0), 0,
                    [&](std::size_t, std::size_t begin, std::size_t end) {
@@ -390,7 +416,7 @@ class HemicubeProvider final : public FormFactorProvider {
                            const double share = c.share_in_front(g.centre, poly.normal, eps);
                            const dvec3 d = g.centre - c.centre;
                            const double seen_share =
-                               share > 0 && glm::dot(d, d) < 4 * R2
+                               judge_seen && share > 0 && glm::dot(d, d) < 4 * R2
                                    ? share_seen(c, a.polygon, g.centre, 1e-4 * c.radius)
                                    : 1.0;
                            receivers_[i] = {g.centre, g.area, float(share), float(seen_share)};

@@ -477,6 +477,24 @@ bool Solver::must_split_cluster(std::uint32_t node) const {
     return code_parallax(code) * cluster_power_[node] > options_.cluster_parallax * sum(emitted_);
 }
 
+void Solver::mark_hidden_sources(ClusterShooter& c) {
+    if (c.sources.empty()) return;
+    if (!cluster_bvh_) cluster_bvh_ = std::make_unique<Bvh>(*scene_);
+    std::vector<std::uint32_t> polygons;
+    std::vector<double> power;
+    for (const ClusterShooter::Source& s : c.sources) {
+        polygons.push_back(s.polygon);
+        power.push_back(s.share);
+    }
+    const std::vector<double> hidden = light_hidden_from_centre(*scene_, *cluster_bvh_, polygons,
+                                                                power, c.centre, 1e-4 * c.radius);
+    for (std::size_t k = 0; k < c.sources.size(); ++k) {
+        const Polygon& poly = scene_->polygons[c.sources[k].polygon];
+        c.sources[k].hidden_from_centre =
+            hidden[k] > 0 || glm::dot(poly.normal, c.centre - poly.centroid()) <= 0;
+    }
+}
+
 bool Solver::light_hidden(const ClusterShooter& c, const std::vector<double>& power) {
     if (!cluster_bvh_) cluster_bvh_ = std::make_unique<Bvh>(*scene_);
     const std::vector<double> hidden = light_hidden_from_centre(*scene_, *cluster_bvh_, c.members,
@@ -668,6 +686,7 @@ bool Solver::shoot_cluster(ShotRecord& rec, std::uint32_t& polygon) {
         c.unshot_power = weight;
         c.power_fraction = total > 0 ? std::min(1.0, weight / total) : 1.0;
         c.sources = brightest_sources(c.members, member_power, weight);
+        mark_hidden_sources(c);
 
         // A cluster not measured yet is measured on coarse hemicubes first, where the
         // provider has them: a refused one then costs a fraction of a shot.
