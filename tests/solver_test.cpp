@@ -222,6 +222,54 @@ TEST(ClusterCentre, LightBehindAWallIsHiddenFromTheCentre) {
     }
 }
 
+// cluster_sources, on a jar: a point cluster's centre inside a closed jar (its outer faces
+// face away from it), a lining inside the jar facing the centre, a board outside facing the
+// jar, and a polygon without power. Brightest first, shares of the total; the outer faces are
+// hidden (the centre is behind them), the board too (the jar's wall blocks it), however
+// little of the light it holds (0.07 %: past the 99 % that light_hidden_from_centre judges
+// by rays), while the lining sees the centre.
+TEST(ClusterCentre, SourcesThatDoNotSeeTheCentreAreMarked) {
+    Scene s;
+    s.materials.push_back({"grey", dvec3(0.5), dvec3(0.0)});
+    s.groups.push_back("g");
+    add_polygon(s, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}}, 0, 0);         // jar's top, +y
+    add_polygon(s, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}}, 0, 0);         // jar's side, +x
+    add_polygon(s, {{0.9, 0, 0}, {0.9, 0, 1}, {0.9, 1, 1}, {0.9, 1, 0}}, 0, 0); // lining, -x
+    add_polygon(s, {{2, 0, 0}, {2, 0, 1}, {2, 1, 1}, {2, 1, 0}}, 0, 0);         // board, -x
+    add_polygon(s, {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, 0, 0);         // jar's floor
+    finish_scene(s, "jar");
+    ASSERT_NEAR(s.polygons[0].normal.y, 1, 1e-12);
+    ASSERT_NEAR(s.polygons[1].normal.x, 1, 1e-12);
+    ASSERT_NEAR(s.polygons[2].normal.x, -1, 1e-12);
+    ASSERT_NEAR(s.polygons[3].normal.x, -1, 1e-12);
+    const Bvh bvh(s);
+    const std::vector<double> power = {1, 2, 4, 0.005, 0};
+    const double total = 7.005;
+    const std::vector<ClusterShooter::Source> sources =
+        cluster_sources(s, bvh, {0, 1, 2, 3, 4}, power, total, {0.5, 0.5, 0.5}, 1e-4);
+    ASSERT_EQ(sources.size(), 4u) << "the polygon without power is no source";
+    const std::uint32_t order[] = {2, 1, 0, 3};
+    const bool hidden[] = {false, true, true, true};
+    for (std::size_t k = 0; k < 4; ++k) {
+        EXPECT_EQ(sources[k].polygon, order[k]) << k;
+        EXPECT_DOUBLE_EQ(sources[k].share, power[order[k]] / total) << k;
+        EXPECT_EQ(sources[k].hidden_from_centre, hidden[k]) << "polygon " << order[k];
+    }
+    // From outside the jar, in front of the board, only the lining and the jar's top (both
+    // with the point behind their planes) are hidden.
+    const std::vector<ClusterShooter::Source> outside =
+        cluster_sources(s, bvh, {0, 1, 2, 3, 4}, power, total, {1.5, 0.5, 0.5}, 1e-4);
+    ASSERT_EQ(outside.size(), 4u);
+    const bool hidden_outside[] = {true, false, true, false};
+    for (std::size_t k = 0; k < 4; ++k)
+        EXPECT_EQ(outside[k].hidden_from_centre, hidden_outside[k]) << "polygon " << order[k];
+    // At most kMaxSources.
+    const std::vector<std::uint32_t> many(40, 2);
+    EXPECT_EQ(cluster_sources(s, bvh, many, std::vector<double>(40, 1.0), 40, {0.5, 0.5, 0.5}, 1e-4)
+                  .size(),
+              ClusterShooter::kMaxSources);
+}
+
 // light_off_centre, on the office glb's case: a bar of an LED light (1.4 x 86 cm, at x = 0)
 // in a cluster with two faces of a bookshelf 1.5 m away (1.3 x 0.62 m, at x = 1.5). Their
 // area-weighted centre lies 1 cm from the shelf (radius 2.12 m, to the bar's far corner).

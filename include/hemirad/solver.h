@@ -323,8 +323,6 @@ class HEMIRAD_API Solver {
     /// Whether more than kHiddenFromCentre of cluster c's light (its members' unshot `power`)
     /// cannot leave from its centre (light_hidden_from_centre).
     bool light_hidden(const ClusterShooter& c, const std::vector<double>& power);
-    /// Sets ClusterShooter::Source::hidden_from_centre of c's sources.
-    void mark_hidden_sources(ClusterShooter& c);
     void update_cluster_power();
     bool must_split_cluster(std::uint32_t node) const;
 
@@ -349,7 +347,7 @@ class HEMIRAD_API Solver {
     std::vector<std::pair<std::uint64_t, std::uint8_t>> learned_; ///< view_ codes of this shot
     std::unique_ptr<PlaneCuts> plane_cuts_;                       ///< null: no shooter refinement
     std::unique_ptr<ClusterTree> clusters_;  ///< null: clusters off (or a CPU provider)
-    std::unique_ptr<Bvh> cluster_bvh_;       ///< light_hidden_from_centre's, built when needed
+    std::unique_ptr<Bvh> cluster_bvh_;       ///< the clusters' ray casts, built when needed
     std::vector<double> cluster_power_;      ///< per cluster node, unshot power summed over RGB
     std::vector<std::uint8_t> cluster_view_; ///< per cluster node, a view code (as view_)
     std::unique_ptr<LightLayers> layers_;    ///< null: no light layers (light_layers.h)

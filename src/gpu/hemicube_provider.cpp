@@ -288,10 +288,10 @@ class HemicubeProvider final : public FormFactorProvider {
     // on `polygon` (each in front of the other), the share that a ray cast finds unblocked
     // between them: within twice its radius the point sees what its polygons do not
     // (from a centre inside a jar, the jar's inside, which its lit outside never lights).
-    // 0 where none of them faces the receiver (the inside of a jar's lid).
-    double share_seen(const ClusterShooter& c, std::uint32_t polygon, const dvec3& x,
-                      double lift) const {
-        if (!bvh_ || c.sources.empty()) return 1.0;
+    // 0 where none of them faces the receiver (the inside of a jar's lid). `centroids`: the
+    // sources' centroids. Only with a BVH (shoot_cluster's judge_seen).
+    double share_seen(const ClusterShooter& c, const std::vector<dvec3>& centroids,
+                      std::uint32_t polygon, const dvec3& x, double lift) const {
         const dvec3 n = scene_->polygons[polygon].normal;
         const dvec3 from = x + lift * n;
         // The sources that face it (brightest first), then rays to them until nine tenths of
@@ -302,13 +302,14 @@ class HemicubeProvider final : public FormFactorProvider {
         double facing = 0;
         for (std::size_t k = 0; k < c.sources.size() && k < facing_sources.size(); ++k) {
             const Polygon& source = scene_->polygons[c.sources[k].polygon];
-            const dvec3 y = source.centroid();
+            const dvec3& y = centroids[k];
             if (glm::dot(source.normal, x - y) > lift && glm::dot(n, y - x) > lift)
                 facing_sources[count++] = std::uint8_t(k), facing += c.sources[k].share;
         }
         double judged = 0, seen = 0;
         for (std::size_t i = 0; i < count && judged < kJudgedShare * facing; ++i) {
-            const ClusterShooter::Source& s = c.sources[facing_sources[i]];
+            const std::size_t k = facing_sources[i];
+            const ClusterShooter::Source& s = c.sources[k];
             const Polygon& source = scene_->polygons[s.polygon];
             judged += s.share;
             if (!s.hidden_from_centre) { // it sees what the point sees
@@ -319,7 +320,7 @@ class HemicubeProvider final : public FormFactorProvider {
             // straight across, around a corner its centroid.
             const dvec3 across = nearest_point(source, x) + lift * source.normal;
             if (!bvh_->occluded(from, across, polygon, s.polygon) ||
-                !bvh_->occluded(from, source.centroid() + lift * source.normal, polygon, s.polygon))
+                !bvh_->occluded(from, centroids[k] + lift * source.normal, polygon, s.polygon))
                 seen += s.share;
         }
         return judged > 0 ? seen / judged : 0.0;
@@ -406,6 +407,10 @@ class HemicubeProvider final : public FormFactorProvider {
         const bool judge_seen =
             bvh_ && std::any_of(c.sources.begin(), c.sources.end(),
                                 [](const auto& s) { return s.hidden_from_centre; });
+        std::vector<dvec3> centroids;
+        if (judge_seen)
+            for (const ClusterShooter::Source& s : c.sources)
+                centroids.push_back(scene_->polygons[s.polygon].centroid());
         receivers_.resize(links.size());
         for_chunks(links.size(), chunk_count(links.size(), kChunkNodes, 0), 0,
                    [&](std::size_t, std::size_t begin, std::size_t end) {
@@ -417,7 +422,7 @@ class HemicubeProvider final : public FormFactorProvider {
                            const dvec3 d = g.centre - c.centre;
                            const double seen_share =
                                judge_seen && share > 0 && glm::dot(d, d) < 4 * R2
-                                   ? share_seen(c, a.polygon, g.centre, 1e-4 * c.radius)
+                                   ? share_seen(c, centroids, a.polygon, g.centre, 1e-4 * c.radius)
                                    : 1.0;
                            receivers_[i] = {g.centre, g.area, float(share), float(seen_share)};
                        }

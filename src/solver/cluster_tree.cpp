@@ -145,4 +145,28 @@ std::vector<double> light_hidden_from_centre(const Scene& scene, const Bvh& bvh,
     return hidden;
 }
 
+std::vector<ClusterShooter::Source> cluster_sources(const Scene& scene, const Bvh& bvh,
+                                                    const std::vector<std::uint32_t>& polygons,
+                                                    const std::vector<double>& power, double total,
+                                                    const dvec3& centre, double lift) {
+    std::vector<ClusterShooter::Source> sources;
+    for (std::size_t i = 0; i < polygons.size() && i < power.size(); ++i)
+        if (power[i] > 0) sources.push_back({polygons[i], power[i] / total});
+    const std::size_t n = std::min(sources.size(), ClusterShooter::kMaxSources);
+    std::partial_sort(sources.begin(), sources.begin() + std::ptrdiff_t(n), sources.end(),
+                      [](const auto& a, const auto& b) { return a.share > b.share; });
+    sources.resize(n);
+    // Equal weights, so that light_hidden_from_centre judges every one of them.
+    std::vector<std::uint32_t> ids;
+    for (const ClusterShooter::Source& s : sources) ids.push_back(s.polygon);
+    const std::vector<double> hidden =
+        light_hidden_from_centre(scene, bvh, ids, std::vector<double>(n, 1.0), centre, lift);
+    for (std::size_t k = 0; k < n; ++k) {
+        const Polygon& poly = scene.polygons[sources[k].polygon];
+        sources[k].hidden_from_centre =
+            hidden[k] > 0 || glm::dot(poly.normal, centre - poly.centroid()) <= 0;
+    }
+    return sources;
+}
+
 } // namespace hemirad

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "hemirad/form_factors.h"
 #include "hemirad/scene.h"
 
 namespace hemirad {
@@ -83,5 +84,15 @@ std::vector<double> light_hidden_from_centre(const Scene& scene, const Bvh& bvh,
                                              const std::vector<std::uint32_t>& polygons,
                                              const std::vector<double>& power, const dvec3& centre,
                                              double lift);
+
+/// A point cluster's sources (ClusterShooter::sources): of `polygons`, the kMaxSources of most
+/// `power` (one value each, >= 0; those without power are left out), brightest first, each
+/// with its share of `total`, and marked hidden_from_centre where `centre` lies behind its
+/// plane (in it included) or a segment from one of its points (as light_hidden_from_centre
+/// takes them, lifted by `lift`) to the centre is blocked. Every source is judged.
+std::vector<ClusterShooter::Source> cluster_sources(const Scene& scene, const Bvh& bvh,
+                                                    const std::vector<std::uint32_t>& polygons,
+                                                    const std::vector<double>& power, double total,
+                                                    const dvec3& centre, double lift);
 
 } // namespace hemirad

@@ -109,20 +109,6 @@ constexpr double kLightOffCentre = 0.5;
 // this rule (at 0.5 and 0.65 too, for more shots).
 constexpr double kHiddenFromCentre = 0.8;
 
-/// A cluster's polygons that carry the most light, brightest first (ClusterShooter::sources).
-std::vector<ClusterShooter::Source> brightest_sources(const std::vector<std::uint32_t>& members,
-                                                      const std::vector<double>& power,
-                                                      double total) {
-    std::vector<ClusterShooter::Source> sources;
-    for (std::size_t i = 0; i < members.size(); ++i)
-        if (power[i] > 0) sources.push_back({members[i], power[i] / total});
-    const std::size_t n = std::min(sources.size(), ClusterShooter::kMaxSources);
-    std::partial_sort(sources.begin(), sources.begin() + std::ptrdiff_t(n), sources.end(),
-                      [](const auto& a, const auto& b) { return a.share > b.share; });
-    sources.resize(n);
-    return sources;
-}
-
 bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
@@ -477,24 +463,6 @@ bool Solver::must_split_cluster(std::uint32_t node) const {
     return code_parallax(code) * cluster_power_[node] > options_.cluster_parallax * sum(emitted_);
 }
 
-void Solver::mark_hidden_sources(ClusterShooter& c) {
-    if (c.sources.empty()) return;
-    if (!cluster_bvh_) cluster_bvh_ = std::make_unique<Bvh>(*scene_);
-    std::vector<std::uint32_t> polygons;
-    std::vector<double> power;
-    for (const ClusterShooter::Source& s : c.sources) {
-        polygons.push_back(s.polygon);
-        power.push_back(s.share);
-    }
-    const std::vector<double> hidden = light_hidden_from_centre(*scene_, *cluster_bvh_, polygons,
-                                                                power, c.centre, 1e-4 * c.radius);
-    for (std::size_t k = 0; k < c.sources.size(); ++k) {
-        const Polygon& poly = scene_->polygons[c.sources[k].polygon];
-        c.sources[k].hidden_from_centre =
-            hidden[k] > 0 || glm::dot(poly.normal, c.centre - poly.centroid()) <= 0;
-    }
-}
-
 bool Solver::light_hidden(const ClusterShooter& c, const std::vector<double>& power) {
     if (!cluster_bvh_) cluster_bvh_ = std::make_unique<Bvh>(*scene_);
     const std::vector<double> hidden = light_hidden_from_centre(*scene_, *cluster_bvh_, c.members,
@@ -685,8 +653,11 @@ bool Solver::shoot_cluster(ShotRecord& rec, std::uint32_t& polygon) {
         }
         c.unshot_power = weight;
         c.power_fraction = total > 0 ? std::min(1.0, weight / total) : 1.0;
-        c.sources = brightest_sources(c.members, member_power, weight);
-        mark_hidden_sources(c);
+        if (c.rect.count != 4) { // a point: its receivers near it judged by its sources
+            if (!cluster_bvh_) cluster_bvh_ = std::make_unique<Bvh>(*scene_);
+            c.sources = cluster_sources(*scene_, *cluster_bvh_, c.members, member_power, weight,
+                                        c.centre, 1e-4 * c.radius);
+        }
 
         // A cluster not measured yet is measured on coarse hemicubes first, where the
         // provider has them: a refused one then costs a fraction of a shot.
