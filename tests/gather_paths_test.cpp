@@ -53,7 +53,7 @@ Hierarchy unsolved(const Scene& scene) {
 /// space (no polygon).
 void expect_furnace_irradiance(const Hierarchy& h, double rho = kRho, double tolerance = 0.01) {
     const Scene& scene = h.scene();
-    ASSERT_EQ(scene.polygons.size(), 384u);
+    ASSERT_GE(scene.polygons.size(), 384u); // the furnace's (first) and any outside it
     const double M = scene.material_of(scene.polygons[0]).exitance().x;
     ASSERT_NEAR(M, 1.0, 1e-12);
 
@@ -100,11 +100,39 @@ TEST(GatherPaths, SamplingTheSolutionsBrightLeavesLeavesTheFurnaceUnbiased) {
 }
 
 // A furnace of reflectance 0.9: nine tenths of E comes after a bounce, and 39 % of it (0.9^9)
-// after more than 8. The paths go on past their 8th bounce by Russian roulette, so E stays
-// exact in expectation; stopped there and reading the (empty) solution, E reads 39 % low
-// (measured). Tolerance 5 %: over 9 seeds E's standard deviation is 1.3 % of E (the largest
-// error 3.3 %).
+// after more than 8. The paths go on by Russian roulette (from their second bounce), so E
+// stays exact in expectation; stopped after 8 bounces and reading the (empty) solution, E
+// reads 39 % low (measured). Tolerance 8 %: over 24 seeds E's standard deviation is 1.9-2.7 %
+// of E at the three points (the largest error 6.4 %; the means within 0.8 %, their standard
+// errors 0.4-0.6 %).
+constexpr double kBrightFurnaceTolerance = 0.08;
+
 TEST(GatherPaths, ABrightFurnaceIsGatheredPastEightBounces) {
     const Scene scene = furnace(0.9);
-    expect_furnace_irradiance(unsolved(scene), 0.9, 0.05);
+    expect_furnace_irradiance(unsolved(scene), 0.9, kBrightFurnaceTolerance);
+}
+
+// The same bright furnace with one bright leaf outside it: a 10 cm patch 3 m above its top,
+// facing it, whose leaf holds 1000 in the solution (the scene's only light in the solution).
+// The gather samples it from every hit, and from inside the furnace it is always hidden. When
+// a traced path took either a cosine ray or a bright leaf at each hit, with even odds and a
+// weight of 2, its weight doubled at every bounce (the bright leaf never found), and the paths
+// here run for tens of bounces: E read 11.4, 7.6 and 6.0 for 10 at the three points (most
+// paths die early, one in 2^k carries 2^k times the light). Past the first hit a far bright
+// leaf is now sampled beside the cosine ray, which goes on with a weight of 1 where it meets
+// no bright leaf.
+TEST(GatherPaths, ABrightLeafHiddenFromAFurnaceLeavesItsPathsWeightsAlone) {
+    Scene scene = furnace(0.9);
+    const std::uint32_t grey = std::uint32_t(scene.materials.size());
+    scene.materials.push_back({"grey", dvec3(0.5), dvec3(0.0)});
+    const std::uint32_t patch = std::uint32_t(scene.polygons.size());
+    add_polygon(scene, {{0.45, 4, 0.45}, {0.55, 4, 0.45}, {0.55, 4, 0.55}, {0.45, 4, 0.55}}, grey,
+                0);
+    finish_scene(scene, "furnace and patch");
+    ASSERT_EQ(scene.polygons.size(), 385u);
+    ASSERT_LT(scene.polygons[patch].normal.y, -0.99);
+    Hierarchy h = unsolved(scene);
+    h.receive({patch, 0, 0}, dvec3(1000.0));
+    h.push_pull_all();
+    expect_furnace_irradiance(h, 0.9, kBrightFurnaceTolerance);
 }

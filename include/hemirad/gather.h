@@ -178,17 +178,20 @@ class HEMIRAD_API FinalGather {
     dvec3 shade(const dvec3& origin, const dvec3& dir, const Hit& hit, Rng& rng, int bounce,
                 std::uint64_t& casts) const;
     /// One sample of the bright leaves (bright_leaves.h) seen from `origin` (normal n): what it
-    /// brings, weighted for its multiple importance sampling with the cosine rays.
+    /// brings, weighted for its multiple importance sampling with the cosine rays; its path
+    /// traced on (shade()), or with `traced` false its leaf's value read off the solution,
+    /// for a leaf as far as shade() reads leaves (nothing from a nearer one).
     dvec3 bright_sample(const dvec3& origin, const dvec3& n, std::uint32_t self, Rng& rng,
-                        int bounce, std::uint64_t& casts) const;
+                        int bounce, std::uint64_t& casts, bool traced = true) const;
     /// One cosine ray from `origin`, weighted for its multiple importance sampling with the
     /// bright leaves.
     dvec3 cosine_sample(const dvec3& origin, const dvec3& n, std::uint32_t self, Rng& rng,
                         int bounce, std::uint64_t& casts) const;
-    /// The balance heuristic's weight of a cosine ray along `dir` that met `first`.
-    double cosine_weight(const dvec3& dir, const dvec3& n, const FirstHit& first) const;
-    /// A traced path's next step from a hit: a cosine ray or a bright leaf, one of them at
-    /// random, weighted for the choice.
+    /// The balance heuristic's weight of a cosine ray along `dir` that met `first`; past the
+    /// first hit (bounce > 0) only far bright leaves are sampled (see onward()).
+    double cosine_weight(const dvec3& dir, const dvec3& n, const FirstHit& first, int bounce) const;
+    /// A traced path's next step from a hit: a cosine ray, traced on, and a far bright leaf,
+    /// read off the solution, each weighted for their multiple importance sampling.
     dvec3 onward(const dvec3& origin, const dvec3& n, std::uint32_t self, Rng& rng, int bounce,
                  std::uint64_t& casts) const;
     dvec3 direct_sample(const dvec3& y, const dvec3& n, std::uint32_t self, Rng& rng) const;
