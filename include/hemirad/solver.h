@@ -323,6 +323,8 @@ class HEMIRAD_API Solver {
     /// Whether more than kHiddenFromCentre of cluster c's light (its members' unshot `power`)
     /// cannot leave from its centre (light_hidden_from_centre).
     bool light_hidden(const ClusterShooter& c, const std::vector<double>& power);
+    /// The BVH of the clusters' ray casts (cluster_bvh_), built on the first call.
+    const Bvh& cluster_bvh();
     void update_cluster_power();
     bool must_split_cluster(std::uint32_t node) const;
 

@@ -1056,9 +1056,9 @@ class HemicubeProvider final : public FormFactorProvider {
     // send to what the centre does not see has no link and is lost: the other error of the
     // centre's view, which on average cancels the first. So rows under 1.01 keep the centre's
     // view: the seventeenth session cast these rays for every row, and the Cornell box read low
-    // (mean -1.40 -> -3.21 % without the final gather); and room402's shots, rows 1.001-1.0065
-    // from the kernel at node centres, took twice the bare hemicube with the rays past 1.001
-    // (shot_overhead 1.18 -> 2.16).
+    // (mean -1.40 -> -3.21 % without the final gather); and room402's shots (rows
+    // 1.001-1.0065; 0.993-1.0009 with the rays) took twice the bare hemicube with the rays past
+    // 1.001 (shot_overhead 1.18 -> 2.16).
     static constexpr double kRowSlack = 0.01;
     void see_from_parts(const Shooter& s, std::vector<Link>& links) const {
         if (point_ || hidden_ || s.address.polygon >= scene_->polygons.size()) return;

@@ -463,9 +463,13 @@ bool Solver::must_split_cluster(std::uint32_t node) const {
     return code_parallax(code) * cluster_power_[node] > options_.cluster_parallax * sum(emitted_);
 }
 
-bool Solver::light_hidden(const ClusterShooter& c, const std::vector<double>& power) {
+const Bvh& Solver::cluster_bvh() {
     if (!cluster_bvh_) cluster_bvh_ = std::make_unique<Bvh>(*scene_);
-    const std::vector<double> hidden = light_hidden_from_centre(*scene_, *cluster_bvh_, c.members,
+    return *cluster_bvh_;
+}
+
+bool Solver::light_hidden(const ClusterShooter& c, const std::vector<double>& power) {
+    const std::vector<double> hidden = light_hidden_from_centre(*scene_, cluster_bvh(), c.members,
                                                                 power, c.centre, 1e-4 * c.radius);
     double all = 0, not_seen = 0;
     for (std::size_t i = 0; i < power.size(); ++i) {
@@ -654,8 +658,7 @@ bool Solver::shoot_cluster(ShotRecord& rec, std::uint32_t& polygon) {
         c.unshot_power = weight;
         c.power_fraction = total > 0 ? std::min(1.0, weight / total) : 1.0;
         if (c.rect.count != 4) { // a point: its receivers near it judged by its sources
-            if (!cluster_bvh_) cluster_bvh_ = std::make_unique<Bvh>(*scene_);
-            c.sources = cluster_sources(*scene_, *cluster_bvh_, c.members, member_power, weight,
+            c.sources = cluster_sources(*scene_, cluster_bvh(), c.members, member_power, weight,
                                         c.centre, 1e-4 * c.radius);
         }
 
