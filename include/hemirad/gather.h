@@ -177,6 +177,9 @@ class HEMIRAD_API FinalGather {
     /// after its ray cast).
     dvec3 shade(const dvec3& origin, const dvec3& dir, const Hit& hit, Rng& rng, int bounce,
                 std::uint64_t& casts) const;
+    /// What that ray brings read off the solution: the hit's leaves' irradiance times its
+    /// reflectance, through the panes on the way (nothing from a polygon's back).
+    dvec3 read_off(const dvec3& origin, const dvec3& dir, const Hit& hit) const;
     /// One sample of the bright leaves (bright_leaves.h) seen from `origin` (normal n): what it
     /// brings, weighted for its multiple importance sampling with the cosine rays; its path
     /// traced on (shade()), or with `traced` false its leaf's value read off the solution,

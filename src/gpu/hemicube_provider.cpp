@@ -1127,12 +1127,12 @@ class HemicubeProvider final : public FormFactorProvider {
             const Polygon& poly = scene_->polygons[l.receiver.polygon];
             const double area_j = area(l.receiver.polygon, l.receiver.level, l.receiver.index);
             if (!weighs_emission(s, poly.normal) || !may_be_near(s, l.receiver, area_j)) continue;
-            const PatchGeometry g = patch_geometry(poly, l.receiver.level, l.receiver.index);
-            const double parts = area_mean_analytic(s, l.receiver, g, -1.f);
+            const double parts = l.ff_analytic; // its weighted mean (near_mean)
             if (!(parts > 0)) continue;
             was_weighted[i] = 1;
             const double flux = double(l.ff) * area_j;
             weighted += flux;
+            const PatchGeometry g = patch_geometry(poly, l.receiver.level, l.receiver.index);
             even += flux * area_mean_analytic(s, l.receiver, g, -1.f, false) / parts;
         }
         weighted /= s.geometry.area;

@@ -256,39 +256,44 @@ dvec3 FinalGather::shade(const dvec3& origin, const dvec3& dir, const Hit& hit, 
                          int bounce, std::uint64_t& casts) const {
     const Scene& scene = h_->scene();
     if (!hit.front) return dvec3(0.0);
+    const double distance = hit.t * glm::length(dir);
+    if (bounce > 0 && distance >= kTracedLeaves * leaf_size_[hit.polygon])
+        return read_off(origin, dir, hit); // a far hit past the first: the solution's leaves
     // Through window panes: what comes back is attenuated by them.
     const double through = glazing_->along(origin, dir, hit.t);
     if (!(through > 0)) return dvec3(0.0);
     const Polygon& q = scene.polygons[hit.polygon];
     const dvec3 rho = reflectance_at(scene, hit.polygon, hit.u, hit.v); // the texel there
     if (!(rho.x > 0 || rho.y > 0 || rho.z > 0)) return dvec3(0.0);
-    const double distance = hit.t * glm::length(dir);
-    const double leaf = leaf_size_[hit.polygon];
     const dvec3 y = origin + hit.t * dir;
-    if (bounce == 0 || distance < kTracedLeaves * leaf) {
-        // Past kTracedBounces the path goes on by Russian roulette: in a closed cavity (the
-        // inside of a box on a shelf, of a wall slab) it never leaves the near hits, and
-        // reading the leaves there after a fixed count of bounces would bring whatever light
-        // they hold (with reflectance 0.98, 85 % of it after 8 bounces), where no light
-        // enters; near a narrow opening it finds the light that comes after many bounces.
-        double keep = 1;
-        if (bounce >= kTracedBounces) {
-            keep = std::min(1.0, std::max({rho.x, rho.y, rho.z}));
-            if (bounce >= kMaxTracedBounces || rng.uniform() >= keep) return dvec3(0.0);
-        }
-        // Near the point a leaf's value is too coarse (a contact shadow, a corner), and in
-        // clutter (a cavity behind furniture, under a shelf) the leaves hold too little of the
-        // light that reaches them after several bounces; at the first hit, the solution's
-        // errors (a few per cent low where light arrives after several bounces) pass to the
-        // point undamped, one bounce later they average out: estimate H(y) at the hit itself, the
-        // direct light sampled there plus one more cosine ray, traced on the same way. One
-        // sample each; the primary rays average them.
-        const dvec3 direct_y = direct_sample(y, q.normal, hit.polygon, rng);
-        const dvec3 y_off = y + offset_ * q.normal;
-        return through * rho / keep *
-               (direct_y + onward(y_off, q.normal, hit.polygon, rng, bounce + 1, casts));
+    // Past kTracedBounces the path goes on by Russian roulette: in a closed cavity (the
+    // inside of a box on a shelf, of a wall slab) it never leaves the near hits, and
+    // reading the leaves there after a fixed count of bounces would bring whatever light
+    // they hold (with reflectance 0.98, 85 % of it after 8 bounces), where no light
+    // enters; near a narrow opening it finds the light that comes after many bounces.
+    double keep = 1;
+    if (bounce >= kTracedBounces) {
+        keep = std::min(1.0, std::max({rho.x, rho.y, rho.z}));
+        if (bounce >= kMaxTracedBounces || rng.uniform() >= keep) return dvec3(0.0);
     }
-    return through * rho * irradiance_at(*h_, SurfacePoint{hit.polygon, hit.u, hit.v, 0.0});
+    // Near the point a leaf's value is too coarse (a contact shadow, a corner), and in
+    // clutter (a cavity behind furniture, under a shelf) the leaves hold too little of the
+    // light that reaches them after several bounces; at the first hit, the solution's
+    // errors (a few per cent low where light arrives after several bounces) pass to the
+    // point undamped, one bounce later they average out: estimate H(y) at the hit itself, the
+    // direct light sampled there plus one more cosine ray, traced on the same way. One
+    // sample each; the primary rays average them.
+    const dvec3 direct_y = direct_sample(y, q.normal, hit.polygon, rng);
+    const dvec3 y_off = y + offset_ * q.normal;
+    return through * rho / keep *
+           (direct_y + onward(y_off, q.normal, hit.polygon, rng, bounce + 1, casts));
+}
+
+dvec3 FinalGather::read_off(const dvec3& origin, const dvec3& dir, const Hit& hit) const {
+    if (!hit.front) return dvec3(0.0);
+    return glazing_->along(origin, dir, hit.t) *
+           reflectance_at(h_->scene(), hit.polygon, hit.u, hit.v) *
+           irradiance_at(*h_, SurfacePoint{hit.polygon, hit.u, hit.v, 0.0});
 }
 
 dvec3 FinalGather::bright_sample(const dvec3& origin, const dvec3& n, std::uint32_t self, Rng& rng,
@@ -311,10 +316,7 @@ dvec3 FinalGather::bright_sample(const dvec3& origin, const dvec3& n, std::uint3
         return dvec3(0.0);
     const double weight = balance(cos_x, per_solid_angle(s.density, r, cos_y));
     if (traced) return shade(origin, dir, hit, rng, bounce, casts) * weight;
-    if (!hit.front) return dvec3(0.0);
-    return glazing_->along(origin, dir, hit.t) *
-           reflectance_at(h_->scene(), hit.polygon, hit.u, hit.v) *
-           irradiance_at(*h_, SurfacePoint{hit.polygon, hit.u, hit.v, 0.0}) * weight;
+    return read_off(origin, dir, hit) * weight;
 }
 
 dvec3 FinalGather::onward(const dvec3& origin, const dvec3& n, std::uint32_t self, Rng& rng,
