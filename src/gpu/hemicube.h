@@ -117,8 +117,10 @@ class HemicubeRenderer {
     /// Longest range of vertices that joining neighbouring ranges makes (draw_polygons()).
     static constexpr GLsizei kMaxDrawVertices = 192;
     std::vector<Cluster> clusters_;
-    std::vector<std::uint32_t> hidden_;             ///< set_hidden(), sorted
-    bool hidden_fronts_drawn_ = false;              ///< set_hidden()'s fronts_drawn
+    std::vector<std::uint32_t> near_first_; ///< clusters_ by distance from the eye, last render
+    std::vector<double> cluster_distance_;  ///< of clusters_, squared, last render
+    std::vector<std::uint32_t> hidden_;     ///< set_hidden(), sorted
+    bool hidden_fronts_drawn_ = false;      ///< set_hidden()'s fronts_drawn
     std::vector<std::uint32_t> hidden_per_cluster_; ///< of clusters_, how many are hidden
     std::vector<std::uint8_t> twinned_cluster_;     ///< of clusters_, holds a two-sided polygon
     bool hidden(std::uint32_t polygon) const {
