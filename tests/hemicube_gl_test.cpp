@@ -96,11 +96,48 @@ Scene closed_box(const dvec3& size, const std::vector<std::string>& groups) {
     return scene;
 }
 
+// Adds quad v (material 0) wound so that its normal is `normal`.
+void add_facing(Scene& scene, std::vector<dvec3> v, const dvec3& normal, std::uint32_t group) {
+    if (glm::dot(glm::cross(v[1] - v[0], v[2] - v[0]), normal) < 0) std::swap(v[1], v[3]);
+    add_polygon(scene, v, 0, group);
+}
+
+// A grey scene holding the box [-e, e] x [0, 1] x [-e, e] facing in, group 0, without its
+// floor (y = 0), which the test lays in pieces; the groups `groups` (the box's first).
+Scene box_without_floor(double e, const std::vector<std::string>& groups) {
+    Scene scene;
+    scene.materials.push_back({"grey", dvec3(0.5), dvec3(0.0)});
+    scene.groups = groups;
+    add_facing(scene, {{-e, 1, -e}, {e, 1, -e}, {e, 1, e}, {-e, 1, e}}, {0, -1, 0}, 0);
+    add_facing(scene, {{-e, 0, -e}, {e, 0, -e}, {e, 1, -e}, {-e, 1, -e}}, {0, 0, 1}, 0);
+    add_facing(scene, {{-e, 0, e}, {e, 0, e}, {e, 1, e}, {-e, 1, e}}, {0, 0, -1}, 0);
+    add_facing(scene, {{-e, 0, -e}, {-e, 0, e}, {-e, 1, e}, {-e, 1, -e}}, {1, 0, 0}, 0);
+    add_facing(scene, {{e, 0, -e}, {e, 0, e}, {e, 1, e}, {e, 1, -e}}, {-1, 0, 0}, 0);
+    return scene;
+}
+
 // A shot's links' flux over the shooter's area: F(S -> j) for each (A_j F(j -> S) / A_S), or
 // per watt for a cluster (area_s 1).
 double link_share(const Scene& scene, const Link& l, double area_s) {
     const Polygon& q = scene.polygons[l.receiver.polygon];
     return double(l.ff) * patch_geometry(q, l.receiver.level, l.receiver.index).area / area_s;
+}
+
+// Polygon `shooter` of a finished scene shot whole (hybrid, 256^2): its row (the sum of
+// F(S -> j)) and the part of it on the polygons that `counted` picks.
+template <class Counted>
+std::pair<double, double> whole_polygon_row(const Scene& scene, std::uint32_t shooter,
+                                            Counted&& counted) {
+    const Discretisation disc = discretise(scene, HierarchyOptions{});
+    std::vector<Link> links;
+    gpu_provider("hybrid", scene, disc, 256)->shoot(whole_polygon_shooter(scene, shooter), links);
+    double row = 0, part = 0;
+    for (const Link& l : links) {
+        const double f = link_share(scene, l, scene.polygons[shooter].area);
+        row += f;
+        if (counted(l.receiver.polygon)) part += f;
+    }
+    return {row, part};
 }
 
 // --- accuracy bar: paper 000's cube, 13 x 13 polygons per face ------------------------------
@@ -627,24 +664,15 @@ TEST(PatchIds, PolygonIdsAloneMatchTheFullRender) {
 // wide, and the links take the whole square's kernel for it, though the rest of the square
 // sees only the plate's underside there: the row summed to 1.129 (the ceiling 0.166). Past 1 %
 // over 1, each link takes the share of the square's kernel that reaches it unblocked from its
-// 16 parts (see_from_parts): 0.970 (the ceiling 0.006). The box is closed, so the exact row is
+// 64 parts (see_from_parts): 0.970 (the ceiling 0.007). The box is closed, so the exact row is
 // 1: no light may be made (the solver's bar, 1.001). What is lost is the light that the parts
 // send through the hole to the ceiling beyond the disc the centre sees, which has no links:
 // 3 % here, for a hole that shows the centre 17 % of the sky; the bar below is 5 %.
 TEST(ShooterParts, AFloorUnderAPlateWithAHoleSendsItsLightOnce) {
-    Scene scene;
-    scene.materials.push_back({"grey", dvec3(0.5), dvec3(0.0)});
-    scene.groups = {"box", "square", "plate"};
-    const auto add_facing = [&](std::vector<dvec3> v, const dvec3& normal, std::uint32_t group) {
-        if (glm::dot(glm::cross(v[1] - v[0], v[2] - v[0]), normal) < 0) std::swap(v[1], v[3]);
-        add_polygon(scene, v, 0, group);
-    };
     const double e = 0.5; // the box: [-e, e] x [0, 1] x [-e, e]
-    add_facing({{-e, 1, -e}, {e, 1, -e}, {e, 1, e}, {-e, 1, e}}, {0, -1, 0}, 0);
-    add_facing({{-e, 0, -e}, {e, 0, -e}, {e, 1, -e}, {-e, 1, -e}}, {0, 0, 1}, 0);
-    add_facing({{-e, 0, e}, {e, 0, e}, {e, 1, e}, {-e, 1, e}}, {0, 0, -1}, 0);
-    add_facing({{-e, 0, -e}, {-e, 0, e}, {-e, 1, e}, {-e, 1, -e}}, {1, 0, 0}, 0);
-    add_facing({{e, 0, -e}, {e, 0, e}, {e, 1, e}, {e, 1, -e}}, {-1, 0, 0}, 0);
+    Scene scene = box_without_floor(e, {"box", "square", "plate"});
+    const auto add_facing = [&](const std::vector<dvec3>& v, const dvec3& normal,
+                                std::uint32_t group) { ::add_facing(scene, v, normal, group); };
     // The floor: the square in the middle, four pieces around it.
     const double s = 0.1;
     const auto floor_rect = [&](double x0, double z0, double x1, double z1, std::uint32_t g) {
@@ -667,17 +695,53 @@ TEST(ShooterParts, AFloorUnderAPlateWithAHoleSendsItsLightOnce) {
     plate_rect(h, -h, p, h);
     finish_scene(scene, "test");
     ASSERT_NEAR(scene.polygons[square].normal.y, 1.0, 1e-12);
-    const Discretisation disc = discretise(scene, HierarchyOptions{});
-    std::vector<Link> links;
-    gpu_provider("hybrid", scene, disc, 256)->shoot(whole_polygon_shooter(scene, square), links);
-    double row = 0, ceiling = 0;
-    for (const Link& l : links) {
-        row += link_share(scene, l, scene.polygons[square].area);
-        if (l.receiver.polygon == 0) ceiling += link_share(scene, l, scene.polygons[square].area);
-    }
+    const auto [row, ceiling] =
+        whole_polygon_row(scene, square, [](std::uint32_t p) { return p == 0; });
     std::printf("square under a plate with a hole: row %.5f, on the ceiling %.5f\n", row, ceiling);
     EXPECT_GT(ceiling, 0) << "the centre sees the ceiling through the hole";
     EXPECT_LE(row, 1.001);
+    EXPECT_GE(row, 0.95);
+}
+
+// A strip of floor 4 cm wide between two bars that stand 3.3 mm high along its sides, as
+// the office glb's PC face between its two LED bars (its worst row before the guard, 1.026),
+// in a closed box: the exact row is 1. From the strip's centre the bars are seen at a grazing
+// 9 degrees, so its pixels and its links to the room beyond hold almost all of its light; the
+// bars' sides take 0.08 of it (closed form for a strip and a wall that meet at a right angle:
+// 0.04 each), mostly near them, from the parts of the strip a few millimetres away. Rays from
+// a 4 x 4 grid of the strip's parts sample that at 1 and 15 mm from a bar, and found a 0.052
+// share hidden where the exact share is 0.08: the row 1.027. From an 8 x 8 grid, 1.006 (0.071
+// hidden). Rows under 1.01 are not re-judged (see_from_parts), hence the bound.
+TEST(ShooterParts, AStripBetweenTwoLowBarsSendsItsLightOnce) {
+    const double e = 0.5; // the box: [-e, e] x [0, 1] x [-e, e]
+    Scene scene = box_without_floor(e, {"box", "strip", "bars"});
+    const auto add_facing = [&](const std::vector<dvec3>& v, const dvec3& normal,
+                                std::uint32_t group) { ::add_facing(scene, v, normal, group); };
+    const double w = 0.02, b = 0.014, h = 0.0033, l = 0.22; // half widths, bar, height, half length
+    const auto floor_rect = [&](double x0, double z0, double x1, double z1, std::uint32_t g) {
+        add_facing({{x0, 0, z0}, {x1, 0, z0}, {x1, 0, z1}, {x0, 0, z1}}, {0, 1, 0}, g);
+    };
+    const auto strip = std::uint32_t(scene.polygons.size());
+    floor_rect(-w, -l, w, l, 1);
+    floor_rect(-e, -e, e, -l, 0); // the floor around; none under the bars
+    floor_rect(-e, l, e, e, 0);
+    floor_rect(-e, -l, -w - b, l, 0);
+    floor_rect(w + b, -l, e, l, 0);
+    for (const double side : {-1.0, 1.0}) { // each bar: [w, w + b] on its side, closed above
+        const double x0 = side * w, x1 = side * (w + b);
+        add_facing({{x0, 0, -l}, {x0, 0, l}, {x0, h, l}, {x0, h, -l}}, {-side, 0, 0}, 2);
+        add_facing({{x1, 0, -l}, {x1, 0, l}, {x1, h, l}, {x1, h, -l}}, {side, 0, 0}, 2);
+        add_facing({{x0, h, -l}, {x1, h, -l}, {x1, h, l}, {x0, h, l}}, {0, 1, 0}, 2);
+        add_facing({{x0, 0, -l}, {x1, 0, -l}, {x1, h, -l}, {x0, h, -l}}, {0, 0, -1}, 2);
+        add_facing({{x0, 0, l}, {x1, 0, l}, {x1, h, l}, {x0, h, l}}, {0, 0, 1}, 2);
+    }
+    finish_scene(scene, "test");
+    ASSERT_NEAR(scene.polygons[strip].normal.y, 1.0, 1e-12);
+    const auto [row, bars] = whole_polygon_row(
+        scene, strip, [&](std::uint32_t p) { return scene.polygons[p].group == 2; });
+    std::printf("strip between two low bars: row %.5f, on the bars %.5f\n", row, bars);
+    EXPECT_NEAR(bars, 0.08, 0.02) << "the bars' sides take about 0.04 each";
+    EXPECT_LE(row, 1.01);
     EXPECT_GE(row, 0.95);
 }
 
