@@ -282,9 +282,9 @@ TEST_F(CavityRoomRows, WithoutTheGuardNoRowCreatesLight) {
     // sub-cells of near receivers (centre-value quadrature) changed the row by 2e-4: not the
     // cause. Since 2026-12-06 (twenty-first session) a row over 1.01 takes the visibility from
     // the shooter's parts (see_from_parts; 64 of them since 2026-12-07): the worst row is
-    // 1.009, under that trigger. A
-    // trigger of 1.005 reads 1.00499 here, but casts rays for room402's shots (rows
-    // 1.001-1.0065): shot_overhead 1.16 -> 1.23, its bar 1.25. Remove the skip when fixed.
+    // 1.009, under that trigger. A trigger of 1.005 reads 1.00499 here, but casts rays for
+    // room402's shots (rows 1.001-1.0065): shot_overhead 1.16 -> 1.23, its bar 1.25. Remove
+    // the skip when fixed.
     GTEST_SKIP() << "engine bug: hybrid rows up to 1.009 near the floating box";
     const Scene scene = validation::make_cavity_room();
     SolverOptions o = gpu_options(1e-3);

@@ -69,6 +69,32 @@ Scene office_with_point_sources(const std::string& office_glb) {
     return load_scene(path);
 }
 
+// The median of the reference's lit points (a point under 1 % of it is dark).
+double median_lit(const std::vector<ReferenceValue>& ref) {
+    std::vector<double> lit;
+    for (const ReferenceValue& r : ref)
+        if (luminance(r.E) > 0) lit.push_back(luminance(r.E));
+    return percentile(lit, 0.5);
+}
+
+// Traces the points k that picked(k) again with `samples` paths each, replacing their
+// reference values; returns how many.
+template <class Picked>
+std::size_t trace_again(const Scene& scene, const std::vector<Probe>& probes,
+                        const ReferenceOptions& ro, std::uint64_t samples,
+                        std::vector<ReferenceValue>& ref, Picked&& picked) {
+    std::vector<std::size_t> again;
+    std::vector<Probe> again_probes;
+    for (std::size_t k = 0; k < probes.size(); ++k)
+        if (picked(k)) again.push_back(k), again_probes.push_back(probes[k]);
+    if (again.empty()) return 0;
+    ReferenceOptions more = ro;
+    more.samples = samples;
+    const std::vector<ReferenceValue> precise = reference_irradiance(scene, again_probes, more);
+    for (std::size_t i = 0; i < again.size(); ++i) ref[again[i]] = precise[i];
+    return again.size();
+}
+
 // Solve with the default options (as `hemirad solve SCENE --probes P --probe-out O`), read
 // the points with the default final gather, and compare with the reference.
 Json measure(const Building& b) {
@@ -84,18 +110,9 @@ Json measure(const Building& b) {
     if (b.lit_samples > b.samples) {
         // Again, with more paths, at the points the first pass saw lit (a point it saw dark
         // stays as it was: the leak test needs only that it is dark).
-        std::vector<double> lit;
-        for (const ReferenceValue& r : ref)
-            if (luminance(r.E) > 0) lit.push_back(luminance(r.E));
-        const double dark = 0.01 * percentile(lit, 0.5);
-        std::vector<std::size_t> again;
-        std::vector<Probe> lit_probes;
-        for (std::size_t k = 0; k < probes.size(); ++k)
-            if (luminance(ref[k].E) > dark) again.push_back(k), lit_probes.push_back(probes[k]);
-        ReferenceOptions more = ro;
-        more.samples = b.lit_samples;
-        const std::vector<ReferenceValue> precise = reference_irradiance(scene, lit_probes, more);
-        for (std::size_t i = 0; i < again.size(); ++i) ref[again[i]] = precise[i];
+        const double dark = 0.01 * median_lit(ref);
+        trace_again(scene, probes, ro, b.lit_samples, ref,
+                    [&](std::size_t k) { return luminance(ref[k].E) > dark; });
     }
     const double ref_seconds = seconds_since(t_ref);
 
@@ -112,29 +129,17 @@ Json measure(const Building& b) {
     // Dark: the reference under 1 % of the median of the points it sees lit (the back of an
     // outer wall, the inside of a slab). A dark point leaks when the solve reads it above 1 %
     // of that median and above the reference plus three standard errors.
-    std::vector<double> lit_y;
-    for (const ReferenceValue& r : ref)
-        if (luminance(r.E) > 0) lit_y.push_back(luminance(r.E));
-    const double lit_median = percentile(lit_y, 0.5);
-    const double dark = 0.01 * lit_median;
+    const double lit_median = median_lit(ref), dark = 0.01 * lit_median;
     // Before a dark point that the solve reads lit is called a leak, the reference traces it
     // again with at least 16 times the paths: where light comes through a gap (behind a
     // whiteboard, between a desk's side and the wall), few paths find it, and a short run
     // reads the point low with a standard error as low. In the office glb, two such points
     // read 0.22 and 0.36 % of the lit median with 65,536 paths, 2.68 and 1.05 % (standard
     // errors 0.12 and 0.06 %) with 16,777,216; the solve read them 2.75 and 1.03 %.
-    std::vector<std::size_t> doubtful;
-    std::vector<Probe> doubtful_probes;
-    for (std::size_t k = 0; k < probes.size(); ++k)
-        if (values[k].E && luminance(ref[k].E) <= dark && luminance(*values[k].E) > dark)
-            doubtful.push_back(k), doubtful_probes.push_back(probes[k]);
-    if (!doubtful.empty()) {
-        ReferenceOptions more = ro;
-        more.samples = std::max(b.lit_samples, 16 * b.samples);
-        const std::vector<ReferenceValue> again =
-            reference_irradiance(scene, doubtful_probes, more);
-        for (std::size_t i = 0; i < doubtful.size(); ++i) ref[doubtful[i]] = again[i];
-    }
+    const std::size_t doubtful = trace_again(
+        scene, probes, ro, std::max(b.lit_samples, 16 * b.samples), ref, [&](std::size_t k) {
+            return values[k].E && luminance(ref[k].E) <= dark && luminance(*values[k].E) > dark;
+        });
     std::vector<double> err, signed_err, rel_sem;
     long dark_points = 0, leaking = 0, unread = 0;
     double worst_leak = 0;
@@ -177,7 +182,7 @@ Json measure(const Building& b) {
     j["dark_points"] = dark_points;
     j["leaking_dark_points"] = leaking;
     j["worst_leak_of_lit_median"] = worst_leak;
-    j["dark_points_traced_again"] = doubtful.size();
+    j["dark_points_traced_again"] = doubtful;
     j["points_on_no_surface"] = unread;
     j["median"] = percentile(err, 0.5);
     j["p95"] = percentile(err, 0.95);
@@ -192,7 +197,7 @@ Json measure(const Building& b) {
                 b.name.c_str(), scene.triangle_count(), solver.shots(), solver.seconds(),
                 point_seconds, solver.error_bound(), rows.guarded, rows.max,
                 100 * percentile(err, 0.5), 100 * percentile(err, 0.95),
-                100 * percentile(signed_err, 0.5), dark_points, leaking, doubtful.size(),
+                100 * percentile(signed_err, 0.5), dark_points, leaking, doubtful,
                 100 * percentile(rel_sem, 0.5));
     std::fflush(stdout);
     return j;
