@@ -835,20 +835,27 @@ class HemicubeProvider final : public FormFactorProvider {
     // its edge (the office glb's LED bars against the PC's case) reads 2.8 % low; it read 47 %
     // low with at most three levels of parts by the distance to the shooter's centre and the
     // wall's polygons on no pixel at their centre values (tests/hemicube_gl_test.cpp,
-    // NearReceivers).
-    static constexpr double kMeanRatio = 0.125;     ///< split while size > this x distance, ...
-    static constexpr std::uint32_t kMeanLevels = 3; ///< ... for this many levels below a;
-    static constexpr double kEdgeRatio = 1.0;       ///< then while size > this x distance,
-    static constexpr std::uint32_t kEdgeLevels = 6; ///< to this many levels below a
+    // NearReceivers). Parts wider than the shooter (its area over its longest edge) are split
+    // on past the sixth level, to the twelfth: a node 8 cm x 25 cm across a gap of 0.8 mm
+    // from a part of an LED bar 0.8 mm wide (the office glb's bar, split into quarters) took
+    // the kernel at the centres of parts 2 mm long where it falls from 0.5 to 0.1 within
+    // 2 mm, and read 5.6 % high (-0.8 % at the twelfth level; rows up to 1.0075 -> 1.001).
+    static constexpr double kMeanRatio = 0.125;        ///< split while size > this x distance, ...
+    static constexpr std::uint32_t kMeanLevels = 3;    ///< ... for this many levels below a;
+    static constexpr double kEdgeRatio = 1.0;          ///< then while size > this x distance,
+    static constexpr std::uint32_t kEdgeLevels = 6;    ///< to this many levels below a,
+    static constexpr std::uint32_t kSliverLevels = 12; ///< or this many for parts wider than
+                                                       ///< the shooter
     float area_mean_analytic(const Shooter& s, const PatchAddress& a, const PatchGeometry& g,
                              float at_centre, bool weigh = true) const {
         if (point_) return at_centre;
         const Polygon& poly = scene_->polygons[a.polygon];
         // (A patch index of level 15 still fits 32 bits.)
-        const std::uint32_t deepest = std::min<std::uint32_t>(a.level + kEdgeLevels, 15);
+        const std::uint32_t deepest = std::min<std::uint32_t>(a.level + kSliverLevels, 15);
+        const double width = s.geometry.area / longest_edge(s.geometry.corners, s.geometry.count);
         return float(part_mean(s, poly, a.level, a.index, g.centre,
                                part_size(g.area, longest_edge(g.corners, g.count)),
-                               deepest - a.level, 0, at_centre, weigh));
+                               deepest - a.level, 0, at_centre, weigh, width));
     }
 
     // The mean of the kernel over part `index` of `level` of poly (its centre; size: the
@@ -857,9 +864,10 @@ class HemicubeProvider final : public FormFactorProvider {
     // negative).
     double part_mean(const Shooter& s, const Polygon& poly, std::uint32_t level,
                      std::uint32_t index, const dvec3& centre, double size, std::uint32_t levels,
-                     std::uint32_t depth, double value, bool weigh) const {
+                     std::uint32_t depth, double value, bool weigh, double width) const {
         const double ratio = depth < kMeanLevels ? kMeanRatio : kEdgeRatio;
-        if (depth >= levels || small_for_distance(s, centre, size, ratio))
+        if (depth >= levels || (depth >= kEdgeLevels && size <= width) ||
+            small_for_distance(s, centre, size, ratio))
             return value >= 0 && !(weigh && weighs_emission(s, poly.normal))
                        ? value
                        : near_kernel(s, centre, poly.normal, weigh);
@@ -871,7 +879,7 @@ class HemicubeProvider final : public FormFactorProvider {
         for (std::uint32_t c : patch_children(poly.is_triangle(), level, index)) {
             const double w = patch_area(poly, level + 1, c);
             total += w * part_mean(s, poly, level + 1, c, patch_centre(poly, level + 1, c),
-                                   0.5 * size, levels, depth + 1, -1.0, weigh);
+                                   0.5 * size, levels, depth + 1, -1.0, weigh, width);
             weights += w;
         }
         return weights > 0 ? total / weights : 0.0;

@@ -48,10 +48,10 @@ class HemicubeVisibility {
     HemicubeVisibility(const Scene& scene, const HemicubeLayout& layout, const HemicubeFrame& frame,
                        const float* rgba, const dvec3& eye, const float* ids);
 
-    /// Is point x, on polygon `own`, seen from the eye? It is if the pixel its direction
-    /// falls in shows `own`, nothing, or a polygon that the segment from the eye to x does
-    /// not cross (the pixel's centre ray met it, x's ray passes beside it). Points below the
-    /// hemicube's plane are not seen.
+    /// Is point x, on polygon `own`, seen from the eye? It is unless the segment from the eye
+    /// to x crosses a polygon other than `own` that the pixel its direction falls in, or one
+    /// of the 8 around it, shows (x may lie within a pixel of the silhouette of what hides it,
+    /// the pixel showing `own` or nothing). Points below the hemicube's plane are not seen.
     bool visible(const dvec3& x, std::uint32_t own) const;
 
     /// The same as a depth map would tell it, for a point whose polygon covers no pixel (it
@@ -65,7 +65,9 @@ class HemicubeVisibility {
 
     /// Calls mark(i) for every pixel i that shows the front of a polygon P next to a pixel
     /// (4-neighbour, same face) whose centre ray meets P (within P) behind what that pixel
-    /// shows: P goes on behind an occluder there, so the node pixel i shows is partly hidden.
+    /// shows, or a ray near one of its corners meets P behind that polygon (P goes on behind
+    /// it for less than a pixel): P goes on behind an occluder there, so the node pixel i
+    /// shows is partly hidden.
     template <class Mark> void occlusion_edges(Mark mark) const {
         for (int f = 0; f < 5; ++f) occlusion_edges(f, mark);
     }
@@ -73,12 +75,13 @@ class HemicubeVisibility {
     template <class Mark> void occlusion_edges(int f, Mark mark) const;
 
   private:
-    /// Direction (not normalised) through the centre of pixel (i, j) of face f.
-    dvec3 ray(int f, int i, int j) const;
+    /// Does the segment from the eye along d cross a polygon other than `own` that one of
+    /// the 3 x 3 pixels around `pixel` shows?
+    bool crossed_around(long pixel, std::uint32_t own, const dvec3& d) const;
     /// The polygon pixel `at` shows (front or back), or -1 for nothing.
     long shown(std::size_t at) const;
-    /// Does pixel (i, j) of face f show something in front of polygon p, where its ray meets
-    /// p within p?
+    /// Does pixel (i, j) of face f show something in front of polygon p, where its centre ray
+    /// meets p within p, or where a ray near one of its corners meets both within them?
     bool hides(int f, int i, int j, std::uint32_t p) const;
 
     const Scene* scene_;
