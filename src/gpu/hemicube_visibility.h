@@ -65,9 +65,9 @@ class HemicubeVisibility {
 
     /// Calls mark(i) for every pixel i that shows the front of a polygon P next to a pixel
     /// (4-neighbour, same face) whose centre ray meets P (within P) behind what that pixel
-    /// shows, or a ray near one of its corners meets P behind that polygon (P goes on behind
-    /// it for less than a pixel): P goes on behind an occluder there, so the node pixel i
-    /// shows is partly hidden.
+    /// shows, or a ray near one of its two corners beside pixel i meets P behind that polygon
+    /// (P goes on behind it for less than a pixel): P goes on behind an occluder there, so the
+    /// node pixel i shows is partly hidden.
     template <class Mark> void occlusion_edges(Mark mark) const {
         for (int f = 0; f < 5; ++f) occlusion_edges(f, mark);
     }
@@ -81,8 +81,9 @@ class HemicubeVisibility {
     /// The polygon pixel `at` shows (front or back), or -1 for nothing.
     long shown(std::size_t at) const;
     /// Does pixel (i, j) of face f show something in front of polygon p, where its centre ray
-    /// meets p within p, or where a ray near one of its corners meets both within them?
-    bool hides(int f, int i, int j, std::uint32_t p) const;
+    /// meets p within p, or where a ray near one of its two corners beside pixel (from_i,
+    /// from_j) (a 4-neighbour, which shows p) meets both within them?
+    bool hides(int f, int i, int j, std::uint32_t p, int from_i, int from_j) const;
 
     const Scene* scene_;
     const HemicubeLayout* layout_;
@@ -100,8 +101,8 @@ template <class Mark> void HemicubeVisibility::occlusion_edges(int f, Mark mark)
         const long pa = shown(a), pb = shown(b);
         if (pa == pb) return;
         // Each way: a front of P at one pixel, something else at its neighbour.
-        if (pa >= 0 && rgba_[4 * a + 2] > 0 && hides(f, i1, j1, std::uint32_t(pa))) mark(a);
-        if (pb >= 0 && rgba_[4 * b + 2] > 0 && hides(f, i0, j0, std::uint32_t(pb))) mark(b);
+        if (pa >= 0 && rgba_[4 * a + 2] > 0 && hides(f, i1, j1, std::uint32_t(pa), i0, j0)) mark(a);
+        if (pb >= 0 && rgba_[4 * b + 2] > 0 && hides(f, i0, j0, std::uint32_t(pb), i1, j1)) mark(b);
     };
     // Neighbours with the same ID (the same polygon, same side) are passed over 64 at a time.
     for (int j = 0; j < face.h; ++j) {
