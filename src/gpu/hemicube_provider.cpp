@@ -860,8 +860,8 @@ class HemicubeProvider final : public FormFactorProvider {
 
     // The mean of the kernel over part `index` of `level` of poly (its centre; size: the
     // square root of its area), `depth` levels below the node, split as area_mean_analytic()
-    // says for at most `levels` levels; `value` is the kernel at its centre if known (else
-    // negative).
+    // says for at most `levels` levels (past kEdgeLevels only while wider than `width`, the
+    // shooter's); `value` is the kernel at its centre if known (else negative).
     double part_mean(const Shooter& s, const Polygon& poly, std::uint32_t level,
                      std::uint32_t index, const dvec3& centre, double size, std::uint32_t levels,
                      std::uint32_t depth, double value, bool weigh, double width) const {

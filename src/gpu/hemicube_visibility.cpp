@@ -193,18 +193,20 @@ bool HemicubeVisibility::hides(int f, int i, int j, std::uint32_t p, int from_i,
     if (q < 0) return false; // nothing there: nothing hides p along that ray
     const Polygon& P = scene_->polygons[p];
     const Polygon& Q = scene_->polygons[std::size_t(q)];
-    // Along ray u, does q lie in front of p's plane, within q, where p goes on?
+    // Does ray u meet q's plane in front of p's (at tq, before tp)?
+    double tp = 0, tq = 0;
+    const auto in_front = [&](const dvec3& u) {
+        tp = plane_hit(P, eye_, u);
+        tq = plane_hit(Q, eye_, u);
+        return tp > 0 && tq > 0 && tq < tp * (1 - 1e-6);
+    };
+    // Does q lie there within q, and p go on behind it? (The centre ray met q.)
     const auto behind = [&](const dvec3& u) {
-        const double tp = plane_hit(P, eye_, u);
-        if (!(tp > 0)) return false;
-        const double tq = plane_hit(Q, eye_, u);
-        if (!(tq > 0 && tq < tp * (1 - 1e-6))) return false;
-        return inside(Q, eye_ + tq * u) && inside(P, eye_ + tp * u);
+        return in_front(u) && inside(Q, eye_ + tq * u) && inside(P, eye_ + tp * u);
     };
     const dvec3 u = pixel_ray(*layout_, frame_, f, i, j);
-    const double tp = plane_hit(P, eye_, u), tq = plane_hit(Q, eye_, u);
-    if (!(tp > 0 && tq > 0 && tq < tp * (1 - 1e-6))) return false; // q is not in front of p
-    if (inside(P, eye_ + tp * u)) return true;                     // p goes on there
+    if (!in_front(u)) return false;            // q is not in front of p
+    if (inside(P, eye_ + tp * u)) return true; // p goes on there
     // Where p goes on behind q for less than a pixel, the centre ray misses it: rays near the
     // two corners on the side of the pixel that shows p too. (The office glb's PC case seen
     // past an LED bar 3.3 mm wide, 4 cm from the shooter: the part of the case behind the bar
