@@ -161,6 +161,37 @@ TEST(TwoSided, AlreadyTwinnedPolygonsAreLeftAloneTwinsAreNotTwinnedAgain) {
         EXPECT_EQ(b.scene.polygons[b.scene.polygons[p].twin].twin, p);
 }
 
+// A board modelled by both its faces, each two-sided (the office glb's desk parts): each
+// face's twin would lie on the other face, facing its way, and take the same light again (a
+// patch 10 cm from such a board sent 1.45 of its light: hemicube_gl_test, TwoSidedBoard).
+// The faces are paired instead, and no twin is added.
+TEST(TwoSided, ABoardModelledByBothFacesIsPairedNotTwinned) {
+    Builder b;
+    b.floor(0, 1, 0, 1, 0, "top");                                  // 0, facing up
+    b.quad({{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, "bottom"); // 1, facing down
+    b.floor(0, 1, 0, 1, 2, "shelf");                                // 2, elsewhere
+    ASSERT_LT(b.scene.polygons[1].normal.y, -0.99);
+    std::size_t paired = 99;
+    EXPECT_EQ(make_two_sided(
+                  b.scene, [](std::uint32_t) { return true; }, &paired),
+              1u);
+    EXPECT_EQ(paired, 1u);
+    const Scene& s = b.scene;
+    ASSERT_EQ(s.polygons.size(), 4u) << "only the shelf gets a twin";
+    EXPECT_EQ(s.polygons[0].twin, 1u);
+    EXPECT_EQ(s.polygons[1].twin, 0u);
+    EXPECT_EQ(s.polygons[2].twin, 3u);
+    // Picked one at a time, the same: the second face is the first's back.
+    Builder one;
+    one.floor(0, 1, 0, 1, 0, "top");
+    one.quad({{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, "bottom");
+    EXPECT_EQ(make_two_sided(
+                  one.scene, [](std::uint32_t p) { return p == 0; }, &paired),
+              0u);
+    EXPECT_EQ(paired, 1u);
+    EXPECT_EQ(one.scene.polygons[1].twin, 0u);
+}
+
 TEST(TwoSided, TexCoordsFollowTheCorners) {
     Builder b;
     const std::vector<glm::dvec2> uv{{0, 0}, {0, 1}, {1, 1}, {1, 0}};

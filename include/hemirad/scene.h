@@ -156,9 +156,13 @@ HEMIRAD_API AddResult add_polygon(Scene& scene, const std::vector<dvec3>& corner
 /// Makes the polygons for which pick(index) is true two-sided: appends to each a twin with
 /// the same corners in reverse order (the opposite normal), the same material and group, and
 /// the texture coordinates that go with its corners, and links the two (Polygon::twin).
-/// Polygons that have a twin already are left alone. Returns how many twins were added.
-HEMIRAD_API std::size_t make_two_sided(Scene& scene,
-                                       const std::function<bool(std::uint32_t)>& pick);
+/// Polygons that have a twin already are left alone. A picked polygon whose back face is in
+/// the scene already (another polygon without a twin, with the same corners and the opposite
+/// normal: a board modelled by both its faces) is linked to that one instead, since a twin
+/// would lie on it and take its light a second time; `paired`, if given, is set to how many
+/// were. Returns how many twins were added.
+HEMIRAD_API std::size_t make_two_sided(Scene& scene, const std::function<bool(std::uint32_t)>& pick,
+                                       std::size_t* paired = nullptr);
 
 /// Cuts every polygon that another polygon passes through (a wall face that reaches below the
 /// floor, a jar sunk into a shelf, a floor running on into a wall slab), along the line where

@@ -792,10 +792,19 @@ void finish_surfaces(Scene& scene, const ObjOptions& options,
                 " pieces (so that no patch lies on both sides of a surface; "
                 "--split-intersections off keeps them whole)");
     }
-    make_two_sided(scene, [&](std::uint32_t p) {
-        return options.two_sided_surfaces || scene.material_of(scene.polygons[p]).two_sided ||
-               (also && also(p));
-    });
+    std::size_t paired = 0;
+    make_two_sided(
+        scene,
+        [&](std::uint32_t p) {
+            return options.two_sided_surfaces || scene.material_of(scene.polygons[p]).two_sided ||
+                   (also && also(p));
+        },
+        &paired);
+    if (paired > 0)
+        scene.warnings.push_back(scene.source + ": " + std::to_string(paired) +
+                                 " two-sided polygon(s) have their back face in the model "
+                                 "already (the same corners, facing the other way): each is "
+                                 "paired with that face, and no twin is added on it");
 }
 
 Scene load_scene(const std::string& name_or_path, const BuiltinOptions& builtin,
