@@ -192,6 +192,30 @@ TEST(TwoSided, ABoardModelledByBothFacesIsPairedNotTwinned) {
     EXPECT_EQ(one.scene.polygons[1].twin, 0u);
 }
 
+// drop_coincident_polygons: a quad repeated with its corners in another order on the same
+// side is dropped (its texture coordinates with it); the same quad turned over stays.
+TEST(CoincidentPolygons, ARepeatOnTheSameSideIsDroppedABackToBackOneStays) {
+    Builder b;
+    const std::vector<glm::dvec2> uv0{{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+    const std::vector<glm::dvec2> uv1{{0.5, 0}, {0.5, 1}, {1, 1}, {1, 0}};
+    b.quad({{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}}, "a", 0, &uv0); // 0, facing up
+    b.quad({{1, 0, 1}, {1, 0, 0}, {0, 0, 0}, {0, 0, 1}}, "b", 0, &uv1); // 1, the same, rotated
+    b.quad({{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, "c");          // 2, turned over
+    b.floor(0, 1, 0, 1, 2, "d");                                        // 3, elsewhere
+    ASSERT_GT(b.scene.polygons[1].normal.y, 0.99);
+    ASSERT_LT(b.scene.polygons[2].normal.y, -0.99);
+    std::uint32_t group = 99;
+    EXPECT_EQ(drop_coincident_polygons(b.scene, &group), 1u);
+    EXPECT_EQ(b.scene.groups[group], "b");
+    ASSERT_EQ(b.scene.polygons.size(), 3u);
+    ASSERT_EQ(b.scene.texcoords.size(), 3u);
+    EXPECT_EQ(b.scene.groups[b.scene.polygons[0].group], "a");
+    EXPECT_EQ(b.scene.groups[b.scene.polygons[1].group], "c");
+    EXPECT_EQ(b.scene.groups[b.scene.polygons[2].group], "d");
+    EXPECT_FLOAT_EQ(b.scene.texcoords[0][0].x, 0.f);
+    EXPECT_EQ(drop_coincident_polygons(b.scene), 0u);
+}
+
 TEST(TwoSided, TexCoordsFollowTheCorners) {
     Builder b;
     const std::vector<glm::dvec2> uv{{0, 0}, {0, 1}, {1, 1}, {1, 0}};
@@ -257,6 +281,37 @@ TEST_F(Files, SceneJsonTwoSidedUnknownGroupIsAnErrorNamingIt) {
         EXPECT_NE(m.find("scene.json"), std::string::npos) << m;
         EXPECT_NE(m.find("two_sided"), std::string::npos) << m;
     }
+}
+
+// An object exported twice at the same place (one quad's mesh used by two nodes, neither
+// moved): each surface would take its light twice, since the hemicube shows one of the two
+// copies and the other is linked all the same (a patch near such a board sent 1.75 of its
+// light: hemicube_gl_test, TwoSidedBoard). The second copy's polygons are dropped, with a
+// warning naming its group; a copy back to back (the same quad turned over) would stay.
+TEST_F(Files, GltfObjectExportedTwiceIsKeptOnce) {
+    const std::string gltf = R"({
+  "asset": {"version": "2.0"},
+  "scene": 0,
+  "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"name": "first", "mesh": 0}, {"name": "copy", "mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+  "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAAAAAAAAAAAAAIA/AACAPwAAAAAAAIA/AACAPwAAAAAAAAAAAAABAAIAAAACAAMA"}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                  {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 0, 1]},
+                {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}]
+})";
+    const Scene s = load_gltf(write("twice.gltf", gltf));
+    EXPECT_EQ(count_in(s, "copy"), 0u);
+    EXPECT_GT(count_in(s, "first"), 0u);
+    EXPECT_NEAR(area_of(s, "first"), 1.0, 1e-6);
+    bool warned = false;
+    for (const std::string& w : s.warnings)
+        warned = warned ||
+                 (w.find("dropped 2 polygon(s) that repeat the corners") != std::string::npos &&
+                  w.find("'copy'") != std::string::npos);
+    EXPECT_TRUE(warned) << "a warning names the dropped copy's group";
 }
 
 TEST_F(Files, GltfDoubleSidedMaterialsAreTwoSided) {

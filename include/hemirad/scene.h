@@ -153,6 +153,15 @@ HEMIRAD_API AddResult add_polygon(Scene& scene, const std::vector<dvec3>& corner
                                   double planarity_tolerance = 1e-6,
                                   const std::vector<glm::dvec2>* uv = nullptr);
 
+/// Drops every polygon whose corners (in any order) are those of an earlier polygon facing the
+/// same side: the hemicube shows one of the two and the other is linked all the same, so the
+/// surface would take its light twice (a glTF with an object exported twice; the OBJ loader
+/// drops such faces as it reads them, naming their lines). Back to back, both stay. Keeps
+/// Scene::texcoords parallel; for a scene without twins. Returns how many were dropped and
+/// sets `first_group`, if given, to the group of the first of them.
+HEMIRAD_API std::size_t drop_coincident_polygons(Scene& scene,
+                                                 std::uint32_t* first_group = nullptr);
+
 /// Makes the polygons for which pick(index) is true two-sided: appends to each a twin with
 /// the same corners in reverse order (the opposite normal), the same material and group, and
 /// the texture coordinates that go with its corners, and links the two (Polygon::twin).

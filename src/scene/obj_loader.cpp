@@ -782,6 +782,14 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
 
 void finish_surfaces(Scene& scene, const ObjOptions& options,
                      const std::function<bool(std::uint32_t)>& also) {
+    std::uint32_t group = 0;
+    if (const std::size_t n = drop_coincident_polygons(scene, &group); n > 0)
+        scene.warnings.push_back(
+            scene.source + ": dropped " + std::to_string(n) +
+            " polygon(s) that repeat the corners of another on the same side (the first in "
+            "group '" +
+            (group < scene.groups.size() ? scene.groups[group] : std::string("?")) +
+            "'): the two would z-fight in a hemicube, and the surface would take its light twice");
     if (options.split_intersections) {
         const SplitStats s = split_intersections(scene);
         if (s.polygons_cut > 0)

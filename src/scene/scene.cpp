@@ -380,7 +380,46 @@ std::vector<std::int64_t> corner_key(const Polygon& p, double quantum) {
     return key;
 }
 
+/// The grid corner_key() puts a scene's corners on: a billionth of its largest coordinate
+/// (exported float corners that are the same are the same here).
+double corner_quantum(const Scene& scene) {
+    double extent = 0;
+    for (const Polygon& q : scene.polygons)
+        for (int k = 0; k < q.count; ++k)
+            extent = std::max({extent, std::abs(q.v[k].x), std::abs(q.v[k].y), std::abs(q.v[k].z)});
+    return std::max(extent, 1e-300) * 1e-9;
+}
+
 } // namespace
+
+std::size_t drop_coincident_polygons(Scene& scene, std::uint32_t* first_group) {
+    const double quantum = corner_quantum(scene);
+    std::map<std::vector<std::int64_t>, std::vector<std::uint32_t>> by_corners;
+    std::vector<char> dropped(scene.polygons.size(), 0);
+    std::size_t count = 0;
+    for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
+        std::vector<std::uint32_t>& same = by_corners[corner_key(scene.polygons[p], quantum)];
+        for (std::uint32_t q : same)
+            if (glm::dot(scene.polygons[q].normal, scene.polygons[p].normal) > 0) {
+                if (count == 0 && first_group) *first_group = scene.polygons[p].group;
+                dropped[p] = 1;
+                ++count;
+                break;
+            }
+        if (!dropped[p]) same.push_back(p);
+    }
+    if (count == 0) return 0;
+    std::size_t kept = 0;
+    for (std::size_t p = 0; p < scene.polygons.size(); ++p) {
+        if (dropped[p]) continue;
+        scene.polygons[kept] = scene.polygons[p];
+        if (!scene.texcoords.empty()) scene.texcoords[kept] = scene.texcoords[p];
+        ++kept;
+    }
+    scene.polygons.resize(kept);
+    if (!scene.texcoords.empty()) scene.texcoords.resize(kept);
+    return count;
+}
 
 std::size_t make_two_sided(Scene& scene, const std::function<bool(std::uint32_t)>& pick,
                            std::size_t* paired) {
@@ -396,12 +435,7 @@ std::size_t make_two_sided(Scene& scene, const std::function<bool(std::uint32_t)
     for (std::uint32_t p = 0; p < n; ++p) {
         if (scene.polygons[p].twin != kNoTwin || !pick(p)) continue;
         if (quantum == 0) {
-            double extent = 0;
-            for (const Polygon& q : scene.polygons)
-                for (int k = 0; k < q.count; ++k)
-                    extent = std::max(
-                        {extent, std::abs(q.v[k].x), std::abs(q.v[k].y), std::abs(q.v[k].z)});
-            quantum = std::max(extent, 1e-300) * 1e-9;
+            quantum = corner_quantum(scene);
             for (std::uint32_t q = 0; q < n; ++q)
                 if (scene.polygons[q].twin == kNoTwin)
                     by_corners[corner_key(scene.polygons[q], quantum)].push_back(q);
