@@ -137,6 +137,23 @@ TEST(Grid, RefusesUnknownAndNonPlanarGroups) {
     EXPECT_THROW(evaluate_grid(h, {"ceiling", 2, 2}), InputError);
 }
 
+// A board's two faces modelled in two groups ("top" first, "bottom" after it), both picked
+// two-sided: make_two_sided pairs them (each the other's back), so the bottom face's twin
+// index is lower than its own. A grid on either group lies on that group's face: it used to
+// take only polygons whose twin came after them, and found none in "bottom".
+TEST(Grid, AGroupPairedWithABackInAnotherGroupKeepsItsPolygons) {
+    Scene s;
+    s.materials.push_back({"grey", dvec3(0.5), dvec3(0.0)});
+    s.groups = {"top", "bottom"};
+    add_polygon(s, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, 0, 0); // facing +z
+    add_polygon(s, {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, 0, 1); // facing -z
+    ASSERT_EQ(make_two_sided(s, [](std::uint32_t) { return true; }), 0u);
+    finish_scene(s, "board");
+    ASSERT_EQ(s.polygons[1].twin, 0u);
+    EXPECT_EQ(grid_polygons(s, {"top", 2, 2}), std::vector<std::uint32_t>{0});
+    EXPECT_EQ(grid_polygons(s, {"bottom", 2, 2}), std::vector<std::uint32_t>{1});
+}
+
 TEST(Grid, UnlitGroupHasNoNaN) {
     const Scene s = l_room();
     Hierarchy h(s, discretise(s, {}));

@@ -62,11 +62,14 @@ std::vector<std::uint32_t> grid_polygons(const Scene& scene, const GridSpec& spe
                          " (groups: " + names + ")");
     }
     // A two-sided group: the grid lies on the side the file's normals face (the twins, added
-    // after the file's polygons, face the other way: Polygon::twin).
+    // after the file's polygons, face the other way: Polygon::twin). A face paired with a
+    // modelled back in another group (make_two_sided) is this group's whatever its index.
     std::vector<std::uint32_t> polys;
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
         const Polygon& poly = scene.polygons[p];
-        if (poly.group == std::uint32_t(group) && (poly.twin == kNoTwin || poly.twin > p))
+        if (poly.group == std::uint32_t(group) &&
+            (poly.twin == kNoTwin || poly.twin > p ||
+             scene.polygons[poly.twin].group != std::uint32_t(group)))
             polys.push_back(p);
     }
     HEMIRAD_CHECK(!polys.empty());
