@@ -44,7 +44,11 @@ bool has_warning(const Scene& s, const std::string& part) {
 } // namespace
 
 TEST(Gltf, NodeTransformsComposeFromTheRootDown) {
-    const Scene s = load_gltf(data("nodes.gltf"));
+    // Read raw: the three primitives hold one triangle each, which finishing the surfaces
+    // (below) keeps once.
+    ObjOptions raw;
+    raw.finish_surfaces = false;
+    const Scene s = load_gltf(data("nodes.gltf"), raw);
     // Three primitives (indices u8, u16, u32) of one triangle under root (T 1,2,3) > turned
     // (R z 90 degrees, S 2) > leaf (matrix: T 0,0,1); then three untransformed under "plain".
     ASSERT_EQ(s.polygons.size(), 6u);
@@ -65,6 +69,13 @@ TEST(Gltf, NodeTransformsComposeFromTheRootDown) {
         expect_near(p.v[1], {1, 0, 0}, "untransformed corner");
         EXPECT_EQ(s.groups[p.group], "plain");
     }
+    // Finished (as every loader returns a scene by default), a triangle that repeats another's
+    // corners on the same side is dropped: one of each three stays, with a warning.
+    const Scene finished = load_gltf(data("nodes.gltf"));
+    ASSERT_EQ(finished.polygons.size(), 2u);
+    EXPECT_EQ(finished.groups[finished.polygons[0].group], "leaf");
+    EXPECT_EQ(finished.groups[finished.polygons[1].group], "plain");
+    EXPECT_TRUE(has_warning(finished, "dropped 4 polygon(s) that repeat the corners"));
 }
 
 TEST(Gltf, GltfAndGlbOfTheSameSceneLoadIdentically) {
@@ -78,7 +89,9 @@ TEST(Gltf, GltfAndGlbOfTheSameSceneLoadIdentically) {
 }
 
 TEST(Gltf, MaterialsReflectanceAndEmissiveStrength) {
-    const Scene s = load_gltf(data("nodes.gltf"));
+    ObjOptions raw; // the three primitives' one triangle each, all kept
+    raw.finish_surfaces = false;
+    const Scene s = load_gltf(data("nodes.gltf"), raw);
     const Material& grey = s.material_of(s.polygons[0]);
     EXPECT_EQ(grey.name, "grey");
     EXPECT_EQ(grey.rho, dvec3(0.5, 0.25, 0.125));
@@ -128,7 +141,9 @@ TEST(Gltf, BadFilesAreErrorsNamingFileAndElement) {
 }
 
 TEST(Gltf, UnsupportedModesAndMissingImagesAreWarnings) {
-    const Scene lines = load_gltf(data("lines.gltf"));
+    ObjOptions raw; // (finished, the two instances' repeated triangles are kept once)
+    raw.finish_surfaces = false;
+    const Scene lines = load_gltf(data("lines.gltf"), raw);
     EXPECT_EQ(lines.polygons.size(), 4u) << "the lines primitive skipped (in both instances)";
     EXPECT_TRUE(has_warning(lines, "mesh 0 primitive 0: mode 1"));
     EXPECT_FALSE(has_warning(lines, "extensions not read")) << "emissive strength is read";

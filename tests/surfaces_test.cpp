@@ -193,7 +193,8 @@ TEST(TwoSided, ABoardModelledByBothFacesIsPairedNotTwinned) {
 }
 
 // drop_coincident_polygons: a quad repeated with its corners in another order on the same
-// side is dropped (its texture coordinates with it); the same quad turned over stays.
+// side is dropped (its texture coordinates with it), unless it emits and the first does not;
+// the same quad turned over stays.
 TEST(CoincidentPolygons, ARepeatOnTheSameSideIsDroppedABackToBackOneStays) {
     Builder b;
     const std::vector<glm::dvec2> uv0{{0, 0}, {0, 1}, {1, 1}, {1, 0}};
@@ -214,6 +215,19 @@ TEST(CoincidentPolygons, ARepeatOnTheSameSideIsDroppedABackToBackOneStays) {
     EXPECT_EQ(b.scene.groups[b.scene.polygons[2].group], "d");
     EXPECT_FLOAT_EQ(b.scene.texcoords[0][0].x, 0.f);
     EXPECT_EQ(drop_coincident_polygons(b.scene), 0u);
+    // A lamp's face laid on the ceiling's (the same corners, the same side, after it): the
+    // lamp's stays, wherever it comes.
+    Builder lamp;
+    lamp.floor(0, 1, 0, 1, 2, "ceiling");
+    ASSERT_EQ(
+        add_polygon(lamp.scene, {{0, 2, 0}, {0, 2, 1}, {1, 2, 1}, {1, 2, 0}}, 1, lamp.group("lamp"))
+            .added,
+        1);
+    EXPECT_EQ(drop_coincident_polygons(lamp.scene, &group), 1u);
+    EXPECT_EQ(lamp.scene.groups[group], "ceiling");
+    ASSERT_EQ(lamp.scene.polygons.size(), 1u);
+    EXPECT_EQ(lamp.scene.groups[lamp.scene.polygons[0].group], "lamp");
+    EXPECT_GT(lamp.scene.material_of(lamp.scene.polygons[0]).Ke.x, 0);
 }
 
 TEST(TwoSided, TexCoordsFollowTheCorners) {

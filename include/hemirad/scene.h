@@ -156,7 +156,8 @@ HEMIRAD_API AddResult add_polygon(Scene& scene, const std::vector<dvec3>& corner
 /// Drops every polygon whose corners (in any order) are those of an earlier polygon facing the
 /// same side: the hemicube shows one of the two and the other is linked all the same, so the
 /// surface would take its light twice (a glTF with an object exported twice; the OBJ loader
-/// drops such faces as it reads them, naming their lines). Back to back, both stay. Keeps
+/// drops such faces as it reads them, naming their lines). Of two, one that emits stays (a
+/// lamp's face laid on a ceiling's), else the first. Back to back, both stay. Keeps
 /// Scene::texcoords parallel; for a scene without twins. Returns how many were dropped and
 /// sets `first_group`, if given, to the group of the first of them.
 HEMIRAD_API std::size_t drop_coincident_polygons(Scene& scene,

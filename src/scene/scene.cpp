@@ -397,16 +397,23 @@ std::size_t drop_coincident_polygons(Scene& scene, std::uint32_t* first_group) {
     std::map<std::vector<std::int64_t>, std::vector<std::uint32_t>> by_corners;
     std::vector<char> dropped(scene.polygons.size(), 0);
     std::size_t count = 0;
+    // Of two, the one that emits stays (a lamp's face laid on a ceiling's), else the first.
+    const auto emits = [&](std::uint32_t p) {
+        const dvec3 Ke = scene.material_of(scene.polygons[p]).Ke;
+        return Ke.x > 0 || Ke.y > 0 || Ke.z > 0;
+    };
     for (std::uint32_t p = 0; p < scene.polygons.size(); ++p) {
         std::vector<std::uint32_t>& same = by_corners[corner_key(scene.polygons[p], quantum)];
-        for (std::uint32_t q : same)
+        for (std::uint32_t& q : same)
             if (glm::dot(scene.polygons[q].normal, scene.polygons[p].normal) > 0) {
-                if (count == 0 && first_group) *first_group = scene.polygons[p].group;
-                dropped[p] = 1;
+                std::uint32_t drop = p;
+                if (emits(p) && !emits(q)) std::swap(drop, q); // p stays in q's place
+                if (count == 0 && first_group) *first_group = scene.polygons[drop].group;
+                dropped[drop] = 1;
                 ++count;
                 break;
             }
-        if (!dropped[p]) same.push_back(p);
+        if (!dropped[p] && std::find(same.begin(), same.end(), p) == same.end()) same.push_back(p);
     }
     if (count == 0) return 0;
     std::size_t kept = 0;
