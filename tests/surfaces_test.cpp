@@ -100,6 +100,17 @@ class Files : public ::testing::Test {
     fs::path dir_;
 };
 
+// The end of a glTF whose accessor 0 holds the unit quad [0, 1] x {0} x [0, 1] facing up
+// (four corners) and accessor 1 its two triangles' indices, as a data URI.
+const char* kUnitQuadBuffers = R"(
+  "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAAAAAAAAAAAAAIA/AACAPwAAAAAAAIA/AACAPwAAAAAAAAAAAAABAAIAAAACAAMA"}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                  {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 0, 1]},
+                {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}]
+})";
+
 // Two unit quads facing up, "floor" at y = 0 and "shelf" at y = 1, each its own group.
 const char* kTwoQuadsMtl = "newmtl white\nKd 0.5 0.5 0.5\n";
 const char* kTwoQuadsObj = "mtllib m.mtl\nusemtl white\n"
@@ -303,19 +314,13 @@ TEST_F(Files, SceneJsonTwoSidedUnknownGroupIsAnErrorNamingIt) {
 // light: hemicube_gl_test, TwoSidedBoard). The second copy's polygons are dropped, with a
 // warning naming its group; a copy back to back (the same quad turned over) would stay.
 TEST_F(Files, GltfObjectExportedTwiceIsKeptOnce) {
-    const std::string gltf = R"({
+    const std::string gltf = std::string(R"({
   "asset": {"version": "2.0"},
   "scene": 0,
   "scenes": [{"nodes": [0, 1]}],
   "nodes": [{"name": "first", "mesh": 0}, {"name": "copy", "mesh": 0}],
   "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
-  "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAAAAAAAAAAAAAIA/AACAPwAAAAAAAIA/AACAPwAAAAAAAAAAAAABAAIAAAACAAMA"}],
-  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
-                  {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
-  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
-                 "min": [0, 0, 0], "max": [1, 0, 1]},
-                {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}]
-})";
+)") + kUnitQuadBuffers;
     const Scene s = load_gltf(write("twice.gltf", gltf));
     EXPECT_EQ(count_in(s, "copy"), 0u);
     EXPECT_GT(count_in(s, "first"), 0u);
@@ -331,7 +336,7 @@ TEST_F(Files, GltfObjectExportedTwiceIsKeptOnce) {
 TEST_F(Files, GltfDoubleSidedMaterialsAreTwoSided) {
     // One quad (two triangles, facing up) used by two nodes: "plate" at y = 1 with a
     // doubleSided material, "floor" at y = 0 with a one-sided one.
-    const std::string gltf = R"({
+    const std::string gltf = std::string(R"({
   "asset": {"version": "2.0"},
   "scene": 0,
   "scenes": [{"nodes": [0, 1]}],
@@ -343,13 +348,7 @@ TEST_F(Files, GltfDoubleSidedMaterialsAreTwoSided) {
                  "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1]}},
                 {"name": "solid",
                  "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1]}}],
-  "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAAAAAAAAAAAAAIA/AACAPwAAAAAAAIA/AACAPwAAAAAAAAAAAAABAAIAAAACAAMA"}],
-  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
-                  {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
-  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
-                 "min": [0, 0, 0], "max": [1, 0, 1]},
-                {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}]
-})";
+)") + kUnitQuadBuffers;
     const Scene s = load_gltf(write("plate.gltf", gltf));
     const std::size_t plate = count_in(s, "plate"), floor = count_in(s, "floor");
     ASSERT_GT(floor, 0u);
