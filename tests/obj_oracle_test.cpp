@@ -118,6 +118,7 @@ std::vector<Triangle> tinyobj_triangles(const tinyobj::ObjReader& r, bool materi
     struct Face {
         std::vector<P> v;
         std::string material;
+        bool emits = false;
     };
     std::vector<Face> faces;
     for (const tinyobj::shape_t& s : r.GetShapes()) {
@@ -132,10 +133,15 @@ std::vector<Triangle> tinyobj_triangles(const tinyobj::ObjReader& r, bool materi
             while (face.v.size() > 1 && face.v.front() == face.v.back()) face.v.pop_back();
             const int m = s.mesh.material_ids[f];
             face.material = !materials ? "" : m >= 0 ? mats[std::size_t(m)].name : "default";
+            if (m >= 0) {
+                const auto& e = mats[std::size_t(m)].emission;
+                face.emits = e[0] > 0 || e[1] > 0 || e[2] > 0;
+            }
             faces.push_back(face);
         }
     }
-    // A face with the corners of an earlier kept face, facing the same side, is dropped.
+    // A face with the corners of an earlier kept face, facing the same side, is dropped, or
+    // that earlier face is, where only the later one emits.
     const auto newell = [](const std::vector<P>& v) {
         P n(0.0);
         for (std::size_t i = 0; i < v.size(); ++i) n += glm::cross(v[i], v[(i + 1) % v.size()]);
@@ -146,20 +152,33 @@ std::vector<Triangle> tinyobj_triangles(const tinyobj::ObjReader& r, bool materi
         v.erase(std::unique(v.begin(), v.end()), v.end());
         return v;
     };
-    std::vector<Triangle> out;
-    std::map<std::vector<std::array<double, 3>>, std::vector<P>> seen; // corner set -> normals
-    for (const Face& f : faces) {
+    struct Kept {
+        P n;
+        std::size_t face;
+    };
+    std::map<std::vector<std::array<double, 3>>, std::vector<Kept>> seen; // by corner set
+    std::vector<char> keep(faces.size(), 0);
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+        const Face& f = faces[i];
         if (f.v.size() < 3) continue;
         std::vector<std::array<double, 3>> key;
         for (const P& p : corner_set(f.v)) key.push_back({p.x, p.y, p.z});
         const P n = newell(f.v);
-        auto& normals = seen[key];
-        if (std::any_of(normals.begin(), normals.end(),
-                        [&](const P& m) { return glm::dot(m, n) > 0; }))
-            continue;
-        normals.push_back(n);
-        triangulate(f.v, f.material, out);
+        std::vector<Kept>& kept = seen[key];
+        const auto same_side = std::find_if(kept.begin(), kept.end(),
+                                            [&](const Kept& k) { return glm::dot(k.n, n) > 0; });
+        if (same_side == kept.end()) {
+            kept.push_back({n, i});
+            keep[i] = 1;
+        } else if (f.emits && !faces[same_side->face].emits) {
+            keep[same_side->face] = 0;
+            keep[i] = 1;
+            *same_side = {n, i};
+        }
     }
+    std::vector<Triangle> out;
+    for (std::size_t i = 0; i < faces.size(); ++i)
+        if (keep[i]) triangulate(faces[i].v, faces[i].material, out);
     return out;
 }
 

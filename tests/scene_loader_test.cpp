@@ -318,6 +318,14 @@ TEST(Corpus, CoincidentFacesOnOneSideDroppedBackToBackKept) {
     EXPECT_EQ(s.warnings.size(), 2u) << all_warnings(s);
 }
 
+TEST(Corpus, OfCoincidentFacesTheOneThatEmitsStays) {
+    const Scene s = load_obj(corpus("coincident_lamp.obj"));
+    ASSERT_EQ(s.polygons.size(), 1u);
+    EXPECT_EQ(s.material_of(s.polygons[0]).name, "lamp");
+    expect_warning(s, "coincident_lamp.obj:9: face repeats the corners of the face at line 11 on "
+                      "the same side (the two would z-fight in a hemicube): dropped");
+}
+
 TEST(Corpus, UndefinedMaterialUsesDefaultWithWarning) {
     const Scene s = load_obj(corpus("undefined_material.obj"));
     ASSERT_EQ(s.polygons.size(), 3u);

@@ -651,9 +651,10 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
         return it->second;
     };
 
-    // Coincident faces, before any polygon is made: a face whose distinct corners are those of
-    // an earlier face is dropped if it faces the same side; back to back, both stay. Faces are
-    // grouped by a hash of their sorted corners (16 bytes a face), then compared exactly.
+    // Coincident faces, before any polygon is made: of two faces with the same distinct corners
+    // facing the same side, the later is dropped, or the earlier where only the later emits (a
+    // lamp's face laid on a ceiling's); back to back, both stay. Faces are grouped by a hash
+    // of their sorted corners (16 bytes a face), then compared exactly.
     std::vector<std::uint8_t> dropped(faces.size(), 0);
     long duplicates = 0;
     std::string first_duplicate, first_sheet;
@@ -668,6 +669,12 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
         std::size_t first_dup = faces.size(), first_sh = faces.size();
         int dup_of = 0, sheet_of = 0;
         std::vector<dvec3> corners;
+        const auto emits = [&](const Face& f) {
+            const int m = f.material < 0 ? -1 : material_of_usemtl[std::size_t(f.material)];
+            if (m < 0) return false;
+            const dvec3 Ke = scene.materials[std::size_t(m)].Ke;
+            return Ke.x > 0 || Ke.y > 0 || Ke.z > 0;
+        };
         const auto normal_of = [&](const Face& f) {
             corners.clear();
             for (std::uint32_t v : f.v) corners.push_back(vertices[v]);
@@ -684,10 +691,12 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
                     const Face& fk = faces[keys[k].second];
                     if (dropped[keys[k].second] || corner_set(vertices, fk) != cj) continue;
                     if (glm::dot(nj, normal_of(fk)) > 0) {
-                        dropped[keys[j].second] = 1;
+                        const bool keep_later = emits(fj) && !emits(fk);
+                        const std::uint32_t drop = keep_later ? keys[k].second : keys[j].second;
+                        dropped[drop] = 1;
                         ++duplicates;
-                        if (keys[j].second < first_dup)
-                            first_dup = keys[j].second, dup_of = fk.line;
+                        if (drop < first_dup)
+                            first_dup = drop, dup_of = (keep_later ? fj : fk).line;
                     } else if (keys[j].second < first_sh) {
                         first_sh = keys[j].second, sheet_of = fk.line;
                     }
