@@ -36,6 +36,7 @@ struct HEMIRAD_API Material {
     /// polygon a back-to-back twin.
     bool two_sided = false;
     dvec3 exitance() const; ///< emitted radiosity Be = pi*Ke [W unit^-2]
+    bool emits() const { return Ke.x > 0 || Ke.y > 0 || Ke.z > 0; } ///< some channel of Ke > 0
 };
 
 /// Polygon::twin of a one-sided polygon.

@@ -61,7 +61,7 @@ class LitWeights {
         if (w >= 0) return w;
         const Polygon& q = scene_.polygons[p];
         const Material& m = scene_.material_of(q);
-        if (m.Ke.x > 0 || m.Ke.y > 0 || m.Ke.z > 0) return w = 1.f;
+        if (m.emits()) return w = 1.f;
         if (!(std::max({m.rho.x, m.rho.y, m.rho.z}) > 0)) return w = 0.f;
         const dvec3 c = q.centroid();
         for (std::uint32_t e : emitters_) {

@@ -671,9 +671,7 @@ Scene load_obj(const std::string& path, const ObjOptions& options) {
         std::vector<dvec3> corners;
         const auto emits = [&](const Face& f) {
             const int m = f.material < 0 ? -1 : material_of_usemtl[std::size_t(f.material)];
-            if (m < 0) return false;
-            const dvec3 Ke = scene.materials[std::size_t(m)].Ke;
-            return Ke.x > 0 || Ke.y > 0 || Ke.z > 0;
+            return m >= 0 && scene.materials[std::size_t(m)].emits();
         };
         const auto normal_of = [&](const Face& f) {
             corners.clear();
