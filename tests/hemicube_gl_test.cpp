@@ -680,6 +680,82 @@ TEST(PatchIds, PolygonIdsAloneMatchTheFullRender) {
     EXPECT_GT(empty, 1000);
 }
 
+// --- a receiver across a narrow gap ----------------------------------------------------------
+// A bookshelf's plinth, 3.8 m x 11 cm, stands 1.6 cm from the wall of a closed room 4.9 m x
+// 2.9 m x 4.9 m (the office glb's; its rows reached 1.0044 without the guard). A part of it
+// 47 cm x 1.4 cm, 16 cm from the plinth's end, shoots. 80 % of its light lands on the wall
+// within a few centimetres, in a bump of the kernel as wide as the gap, 20 % on the floor
+// in the gap, and a trace on the side wall down the gap, which meets the shooter's plane.
+// The reference: the exact kernel of each polygon (point_to_polygon_ff) at 200 x 200 points
+// of the part; nothing lies between. Measured before: the wall 0.8062 (its nodes' means over
+// parts as large as their distance from the part, each at its centre), the side wall 0.00026
+// (nodes with their centres behind the part's plane, at the shader's kernel there), the row
+// 1.0017; in a room twice as large, 0.8116, 0.0014 and 1.008.
+TEST(NearReceivers, APlinthAcrossANarrowGapFromAWallSendsItsLightOnce) {
+    const double w = 4.9, h = 2.92;
+    Scene scene;
+    scene.materials.push_back({"grey", dvec3(0.5), dvec3(0.0)});
+    scene.groups = {"room", "plinth"};
+    const double x0 = 1.05, x1 = 4.83, y0 = -0.008, y1 = 0.104, z = 0.016;
+    add_facing(scene, {{0, 0, 0}, {w, 0, 0}, {w, h, 0}, {0, h, 0}}, {0, 0, 1}, 0);
+    add_facing(scene, {{0, 0, w}, {w, 0, w}, {w, h, w}, {0, h, w}}, {0, 0, -1}, 0);
+    add_facing(scene, {{0, 0, 0}, {0, 0, w}, {0, h, w}, {0, h, 0}}, {1, 0, 0}, 0);
+    add_facing(scene, {{w, 0, 0}, {w, 0, w}, {w, h, w}, {w, h, 0}}, {-1, 0, 0}, 0);
+    add_facing(scene, {{0, h, 0}, {w, h, 0}, {w, h, w}, {0, h, w}}, {0, -1, 0}, 0);
+    // The floor: the gap's strip and the rest.
+    add_facing(scene, {{0, 0, 0}, {w, 0, 0}, {w, 0, z}, {0, 0, z}}, {0, 1, 0}, 0);
+    add_facing(scene, {{0, 0, z}, {w, 0, z}, {w, 0, w}, {0, 0, w}}, {0, 1, 0}, 0);
+    const auto plinth = std::uint32_t(scene.polygons.size());
+    add_facing(scene, {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}}, {0, 0, -1}, 1);
+    finish_scene(scene, "test");
+    const Polygon& poly = scene.polygons[plinth];
+    ASSERT_NEAR(poly.normal.z, -1.0, 1e-12);
+    Shooter sh; // the part of the third level whose centre is nearest (1.21, 0.0153)
+    double best = 1e300;
+    for (std::uint32_t i = 0; i < 64; ++i) {
+        const PatchGeometry g = patch_geometry(poly, 3, i);
+        const double off = std::abs(g.centre.x - 1.21) + std::abs(g.centre.y - 0.0153);
+        if (off < best) {
+            best = off;
+            sh.address = {plinth, 3, i};
+            sh.geometry = g;
+        }
+    }
+    sh.normal = poly.normal;
+    sh.unshot_power = 1;
+    ASSERT_NEAR(sh.geometry.area, 0.4725 * 0.014, 1e-4);
+    const Discretisation disc = discretise(scene, HierarchyOptions{});
+    std::vector<Link> links;
+    gpu_provider("hybrid", scene, disc, 256)->shoot(sh, links);
+    std::vector<double> taken(plinth, 0.0), exact(plinth, 0.0);
+    double row = 0;
+    for (const Link& l : links) {
+        const double f = link_share(scene, l, sh.geometry.area);
+        row += f;
+        if (l.receiver.polygon < plinth) taken[l.receiver.polygon] += f;
+    }
+    const int n = 200;
+    const PatchGeometry& g = sh.geometry;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const dvec3 x = g.corners[0] + (g.corners[1] - g.corners[0]) * ((i + 0.5) / n) +
+                            (g.corners[3] - g.corners[0]) * ((j + 0.5) / n);
+            for (std::uint32_t p = 0; p < plinth; ++p)
+                exact[p] += point_to_polygon_ff(x, sh.normal, scene.polygons[p].v.data(),
+                                                scene.polygons[p].count) /
+                            (n * n);
+        }
+    std::printf("plinth part across a gap: row %.5f; wall %.5f (exact %.5f), gap's floor %.5f "
+                "(%.5f), side wall %.5f (%.5f)\n",
+                row, taken[0], exact[0], taken[5], exact[5], taken[2], exact[2]);
+    ASSERT_GT(exact[0], 0.8); // the case means something
+    EXPECT_NEAR(taken[0], exact[0], 0.001);
+    EXPECT_NEAR(taken[5], exact[5], 0.002);
+    EXPECT_NEAR(taken[2], exact[2], 0.0001);
+    EXPECT_LE(row, 1.001);
+    EXPECT_GE(row, 0.995);
+}
+
 // --- a shooter's parts: what its centre sees that they do not ------------------------------
 // A 20 cm square on the floor of a closed 1 m box shoots under a plate 5 cm above it with a
 // 4 cm hole over its centre. The centre sees the ceiling through the hole, a disc some 0.8 m
@@ -733,7 +809,8 @@ TEST(ShooterParts, AFloorUnderAPlateWithAHoleSendsItsLightOnce) {
 // 0.04 each), mostly near them, from the parts of the strip a few millimetres away. Rays from
 // a 4 x 4 grid of the strip's parts sample that at 1 and 15 mm from a bar, and found a 0.052
 // share hidden where the exact share is 0.08: the row 1.027. From an 8 x 8 grid, 1.006 (0.071
-// hidden). Rows under 1.01 are not re-judged (see_from_parts), hence the bound.
+// hidden). From 256 parts four levels down, where the row stays over 1.001 (see_from_parts):
+// 0.9995.
 TEST(ShooterParts, AStripBetweenTwoLowBarsSendsItsLightOnce) {
     const double e = 0.5; // the box: [-e, e] x [0, 1] x [-e, e]
     Scene scene = box_without_floor(e, {"box", "strip", "bars"});
@@ -763,7 +840,7 @@ TEST(ShooterParts, AStripBetweenTwoLowBarsSendsItsLightOnce) {
         scene, strip, [&](std::uint32_t p) { return scene.polygons[p].group == 2; });
     std::printf("strip between two low bars: row %.5f, on the bars %.5f\n", row, bars);
     EXPECT_NEAR(bars, 0.08, 0.02) << "the bars' sides take about 0.04 each";
-    EXPECT_LE(row, 1.01);
+    EXPECT_LE(row, 1.001);
     EXPECT_GE(row, 0.95);
 }
 
