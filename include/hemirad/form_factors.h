@@ -160,6 +160,10 @@ class HEMIRAD_API FormFactorProvider {
     /// against it, whose inner faces are fronts when the shelf is two-sided), where one
     /// point cannot stand for the patch. Computed on demand; default: last_backface_fraction().
     virtual double last_enclosed_fraction() const { return last_backface_fraction(); }
+    /// Does the last patch shooter's centre see the front of a surface nearer than `distance`?
+    /// (Something within reach of its area, whose view then changes across it.) Computed on
+    /// demand; false where not known.
+    virtual bool last_sees_within(double /*distance*/) const { return false; }
     /// Share of the last shooter's form factor whose visibility changes across the shooter's
     /// area (silhouettes of nearby occluders; gpu/hemicube.h, parallax_fraction): large when a
     /// shot from the centre misrepresents what the shooter's area sees. Computed on demand

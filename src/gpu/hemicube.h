@@ -68,6 +68,10 @@ double parallax_fraction(const Scene& scene, const Shooter& shooter, const Hemic
 /// share of a coarser hemicube, for a fraction of the work).
 double near_fraction(const Scene& scene, const Shooter& shooter, const HemicubeLayout& layout,
                      const float* rgba, double distance, int stride = 1);
+/// Does any pixel of a rendered hemicube show the front of a polygon nearer than `distance`
+/// to the eye? (Stops at the first.)
+bool shows_within(const Scene& scene, const Shooter& shooter, const HemicubeLayout& layout,
+                  const float* rgba, double distance);
 
 class HemicubeRenderer {
   public:

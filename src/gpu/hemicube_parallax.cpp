@@ -73,13 +73,18 @@ double parallax_fraction(const Scene& scene, const Shooter& shooter, const Hemic
     return total;
 }
 
-double near_fraction(const Scene& scene, const Shooter& shooter, const HemicubeLayout& L,
-                     const float* rgba, double distance, int stride) {
+namespace {
+
+// Calls visit(w) with each looked-at pixel's weight (its delta form factor times the block it
+// stands for) where it shows the front of a polygon nearer than `distance` along its ray;
+// stops when visit returns false.
+template <class Visit>
+void visit_near_pixels(const Scene& scene, const Shooter& shooter, const HemicubeLayout& L,
+                       const float* rgba, double distance, int stride, Visit&& visit) {
     const HemicubeFrame frame = hemicube_frame(shooter);
     const dvec3& eye = shooter.geometry.centre;
     const int s = std::max(stride, 1);
     const double block = double(s) * s;
-    double total = 0;
     for (int f = 0; f < 5; ++f) {
         const HemicubeLayout::Face& face = L.faces[f];
         for (int j = s / 2; j < face.h; j += s)
@@ -92,10 +97,31 @@ double near_fraction(const Scene& scene, const Shooter& shooter, const HemicubeL
                 const double along = glm::dot(dir, q.normal);
                 if (along == 0) continue;
                 const double t = glm::dot(q.v[0] - eye, q.normal) / along;
-                if (t > 0 && t < distance) total += block * double(L.delta_ff[px]);
+                if (t > 0 && t < distance && !visit(block * double(L.delta_ff[px]))) return;
             }
     }
+}
+
+} // namespace
+
+double near_fraction(const Scene& scene, const Shooter& shooter, const HemicubeLayout& L,
+                     const float* rgba, double distance, int stride) {
+    double total = 0;
+    visit_near_pixels(scene, shooter, L, rgba, distance, stride, [&](double w) {
+        total += w;
+        return true;
+    });
     return total;
+}
+
+bool shows_within(const Scene& scene, const Shooter& shooter, const HemicubeLayout& L,
+                  const float* rgba, double distance) {
+    bool any = false;
+    visit_near_pixels(scene, shooter, L, rgba, distance, 1, [&](double) {
+        any = true;
+        return false;
+    });
+    return any;
 }
 
 } // namespace hemirad::gpu
