@@ -48,6 +48,7 @@ py::dict shot_dict(const ShotRecord& r) {
     if (r.refined) d["refined"] = r.refined;
     if (r.probes) d["probes"] = r.probes;
     if (r.discarded) d["discarded"] = r.discarded;
+    if (r.parts) d["parts"] = r.parts;
     if (r.parallax >= 0) d["parallax"] = r.parallax;
     py::dict t;
     t["select"] = r.t_select;

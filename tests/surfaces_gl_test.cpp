@@ -283,9 +283,11 @@ TEST_F(CavityRoomRows, WithoutTheGuardNoRowCreatesLight) {
     // cause. Since 2026-12-06 (twenty-first session) a row over 1.01 takes the visibility from
     // the shooter's parts (see_from_parts; 64 of them since 2026-12-07): the worst row is
     // 1.009, under that trigger. A trigger of 1.005 reads 1.00499 here, but casts rays for
-    // room402's shots (rows 1.001-1.0065): shot_overhead 1.16 -> 1.23, its bar 1.25. Remove
-    // the skip when fixed.
-    GTEST_SKIP() << "engine bug: hybrid rows up to 1.009 near the floating box";
+    // room402's shots (rows 1.001-1.0065): shot_overhead 1.16 -> 1.23, its bar 1.25. Since
+    // the twenty-sixth session (nodes' pixels measure the share seen where the samples miss
+    // a thin hidden strip; shooters whose rows run over beside near surfaces refined,
+    // SolverOptions::row_refine) the worst row is 1.0054. Remove the skip when fixed.
+    GTEST_SKIP() << "engine bug: hybrid rows up to 1.0054 near the floating box";
     const Scene scene = validation::make_cavity_room();
     SolverOptions o = gpu_options(1e-3);
     o.row_guard = false;
@@ -295,6 +297,73 @@ TEST_F(CavityRoomRows, WithoutTheGuardNoRowCreatesLight) {
     std::printf("cavity room, no row guard: rows %.5f..%.5f\n", rows.min, rows.max);
     EXPECT_LE(rows.max, 1.005);
     EXPECT_EQ(rows.guarded, 0);
+}
+
+// A desk's underside that glows, over a shelf 5.7 cm below half of it, in a closed room (the
+// office glb's desk, whose underside's row read 1.0088 there). From the underside's centre
+// the whole floor is in view, though the half over the shelf sees only the shelf: the floor
+// took 2 % too much of that half's light, and what the shelf hides from the centre took
+// nothing. A patch shooter whose row runs over 1 + row_refine (1e-3) with surfaces within its
+// size in view shoots its children instead, and a leaf its quarters (SolverOptions::
+// row_refine). In a closed room every row is 1. Measured: the worst row 1.0084 from the
+// centres, 1.0049 refined; the rows left over 1.001 (underside leaves 1.0015-1.0037, walls up
+// to 1.0049) have no surface within their size in view, and smaller shooters would not mend
+// them (the hybrid's values at nodes' centres, as room402's ceiling lights). Rows under 1
+// (down to 0.69, leaves of the underside over the shelf) are light lost, not created.
+class RowRefine : public SharedGlContextTest {
+  protected:
+    static Scene desk_over_a_shelf() {
+        Scene scene;
+        scene.materials.push_back({"grey", dvec3(0.5), dvec3(0.0)});
+        scene.materials.push_back({"glow", dvec3(0.5), dvec3(1.0)});
+        scene.groups = {"room", "desk", "shelf"};
+        const auto quad = [&](std::vector<dvec3> v, const dvec3& normal, std::uint32_t material,
+                              std::uint32_t group) {
+            if (glm::dot(glm::cross(v[1] - v[0], v[2] - v[0]), normal) < 0) std::swap(v[1], v[3]);
+            add_polygon(scene, v, material, group);
+        };
+        const dvec3 size(3, 2.5, 3);
+        for (int axis = 0; axis < 3; ++axis) // the room's six walls, facing in
+            for (const double side : {0.0, 1.0}) {
+                const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+                std::vector<dvec3> v(4, dvec3(0.0));
+                for (int k = 0; k < 4; ++k) {
+                    v[k][axis] = side * size[axis];
+                    v[k][u] = (k == 1 || k == 2) ? size[u] : 0;
+                    v[k][w] = k >= 2 ? size[w] : 0;
+                }
+                dvec3 normal(0.0);
+                normal[axis] = side > 0 ? -1 : 1;
+                quad(v, normal, 0, 0);
+            }
+        const double y = 0.75, shelf = y - 0.057;
+        quad({{1, y, 1}, {2.2, y, 1}, {2.2, y, 1.7}, {1, y, 1.7}}, {0, -1, 0}, 1, 1);
+        quad({{1, y, 1}, {2.2, y, 1}, {2.2, y, 1.7}, {1, y, 1.7}}, {0, 1, 0}, 0, 1);
+        quad({{1.6, shelf, 1}, {2.2, shelf, 1}, {2.2, shelf, 1.7}, {1.6, shelf, 1.7}}, {0, 1, 0}, 0,
+             2);
+        quad({{1.6, shelf, 1}, {2.2, shelf, 1}, {2.2, shelf, 1.7}, {1.6, shelf, 1.7}}, {0, -1, 0},
+             0, 2);
+        finish_scene(scene, "test");
+        return scene;
+    }
+    static Solver::RowSumStats rows(double row_refine) {
+        const Scene scene = desk_over_a_shelf();
+        SolverOptions o = gpu_options(1e-2);
+        o.row_guard = false;
+        o.row_refine = row_refine;
+        Solver s(scene, o);
+        while (s.step()) {}
+        return s.row_sums();
+    }
+};
+
+TEST_F(RowRefine, ADeskUndersideOverAShelfSendsItsLightOnce) {
+    const Solver::RowSumStats centre = rows(0), refined = rows(1e-3);
+    std::printf("desk over a shelf, no row guard: rows %.5f..%.5f from the centres, "
+                "%.5f..%.5f refined\n",
+                centre.min, centre.max, refined.min, refined.max);
+    ASSERT_GT(centre.max, 1.006) << "the case means something";
+    EXPECT_LT(refined.max, 1.0055) << "the worst rows, the centre's view, are refined";
 }
 
 // --- clusters -----------------------------------------------------------------------------

@@ -57,6 +57,14 @@ struct SolverOptions {
     /// at every selection (a node that was too strong early may shoot whole later, when it
     /// holds less power). >= 0; 0 = never refine for parallax.
     double shooter_parallax = 3e-4;
+    /// A patch shooter whose row sum (its links' share of its light) exceeds 1 + this, with
+    /// surfaces in view nearer than its size, sees from its centre what parts of it do not
+    /// (a shelf under part of a desk's underside, a bar's low frame beside it): it is not shot
+    /// from its centre; its children are shot instead, and a leaf shoots as its quarters (and
+    /// their quarters, kRowPartLevels deep), each from its own centre, their links summed. A
+    /// leaf whose parts take less than half the excess away (its row is over 1 for another
+    /// reason) shoots from its centre from then on. >= 0; 0 = never.
+    double row_refine = 1e-3;
     /// Shoot groups of nearby polygons at once (cluster_tree.h; Smits, Arvo & Greenberg 1994,
     /// Sillion 1995): when the unshot power is spread over many small polygons, a node of a
     /// tree of polygon clusters shoots as one point source with its polygons' cosine lobes
@@ -101,6 +109,8 @@ struct ShotRecord {
                               ///< (enclosed centre, or parallax above the limit)
     int probes = 0;           ///< coarse hemicubes rendered to decide whether a node may shoot
     int discarded = 0;        ///< full hemicubes rendered for refused nodes and thrown away
+    int parts = 0;            ///< a leaf that shot as its parts (row_refine): hemicubes rendered
+                              ///< for them, the leaf's own thrown away (counted in discarded)
     double parallax = -1;     ///< the shooter's parallax fraction (-1: not measured, a leaf)
     double row_sum = 0;       ///< sum_j F(j->S) A_j / A_S before any guard (1 if closed);
                               ///< for a luminaire, the fraction of its power received
@@ -316,6 +326,19 @@ class HEMIRAD_API Solver {
     /// must_split says so. Returns the shooter, its unshot radiosity and area; links_ holds
     /// its links and learned_ the view codes measured.
     PatchAddress shoot_patch(std::uint32_t polygon, ShotRecord& rec, dvec3& dB, double& area_s);
+    /// Adds the provider's timings of its last shoot() to rec.ff_phases.
+    void add_timings(ShotRecord& rec) const;
+    /// Does a patch shot's row (links_ for `shooter`) exceed 1 + row_refine with surfaces
+    /// nearer than the shooter's size in view (SolverOptions::row_refine)?
+    bool overcounted(const Shooter& shooter, const std::vector<Link>& links) const;
+    /// Shoots `whole` (a leaf, or a part of one) as its quarters, each from its own centre;
+    /// where they took at least half the excess of `whole_row` (the whole's row from its
+    /// centre) away, a quarter still overcounted as its own quarters, while `levels` > 1.
+    /// `links` becomes their links, summed (F(j->S) is the sum of F(j->part)).
+    void shoot_parts(const Shooter& whole, double whole_row, int levels, std::vector<Link>& links,
+                     ShotRecord& rec);
+    /// sum_j F(j->S) A_j / A_S of `links` for a shooter of area `area_s`.
+    double row_of(const std::vector<Link>& links, double area_s) const;
     bool step_round(); ///< step() with a collective of more than one rank (solver_round.cpp)
     /// Shoots the cluster tree's shooter, a cluster node; or returns false, leaving in
     /// `polygon` the polygon to shoot when the descent ends at a single polygon.

@@ -315,7 +315,7 @@ SolutionFile parse_solution(const std::string& bytes, const std::string& path) {
     }
     if (version < 3) { // versions 1 and 2 coded parallax 16 steps to an octave from 2 up to 255
         for (std::uint8_t& e : f.state.enclosed)
-            if (e >= 2) e = std::uint8_t(2 + (e - 2) / 2 > 127 ? 127 : 2 + (e - 2) / 2);
+            if (e >= 2) e = std::uint8_t(2 + (e - 2) / 2 > 125 ? 125 : 2 + (e - 2) / 2);
     }
     if (r.pos() != body)
         throw InputError(path, 0,

@@ -132,6 +132,16 @@ const SolverOption kTable[] = {
      .field = HEMIRAD_FIELD(shooter_parallax),
      .check = Check::Solver,
      .range = {.lo = 0, .finite = true, .note = " (0 = never refine for parallax)"}},
+    {.flag = "--row-refine",
+     .metavar = "E",
+     .unit = "",
+     .help = "shoot a node's children (a leaf: its quarters) instead of the node when its form "
+             "factors sum to more than 1 + E with surfaces nearer than its size in view "
+             "(0 = never)",
+     .section = kSolver,
+     .field = HEMIRAD_FIELD(row_refine),
+     .check = Check::Solver,
+     .range = {.lo = 0, .finite = true, .note = " (0 = never refine for the row sum)"}},
     {.flag = "--clusters",
      .metavar = "auto|on|off",
      .unit = "",

@@ -323,6 +323,7 @@ void run_accuracy(const Spec& spec) {
          [](SolverOptions& o, GatherOptions&, bool&) { o.shooter_parallax = 1e-3; }},
         {"--shooter-parallax 3e-3",
          [](SolverOptions& o, GatherOptions&, bool&) { o.shooter_parallax = 3e-3; }},
+        {"--row-refine 0", [](SolverOptions& o, GatherOptions&, bool&) { o.row_refine = 0; }},
         {"--gather-rays 256", [](SolverOptions&, GatherOptions& g, bool&) { g.rays = 256; }},
         {"--gather-rays 4096", [](SolverOptions&, GatherOptions& g, bool&) { g.rays = 4096; }},
         {"--tolerance 3e-3", [](SolverOptions& o, GatherOptions&, bool&) { o.tolerance = 3e-3; }},

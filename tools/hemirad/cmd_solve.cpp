@@ -51,6 +51,7 @@ Json shot_json(const ShotRecord& r) {
     if (r.refined) j["refined"] = r.refined;
     if (r.probes) j["probes"] = r.probes;
     if (r.discarded) j["discarded"] = r.discarded;
+    if (r.parts) j["parts"] = r.parts;
     if (r.parallax >= 0) j["parallax"] = r.parallax;
     Json t = Json::object();
     t["select"] = r.t_select;
