@@ -62,11 +62,11 @@ bool measured(std::uint8_t code) {
 // receivers then weight its parts by their radiosity: the back of a whiteboard 1.3 cm from
 // a wall sees the dark wall behind the board, not the wall's mean.
 constexpr int kEmissionLevels = 3;
+constexpr double kUnevenEmission = 1.5;
 
 // A leaf whose row runs over (Solver::overcounted) shoots as its quarters, and a quarter
 // whose row runs over too as its own: two levels, 4 to 20 hemicubes.
 constexpr int kRowPartLevels = 2;
-constexpr double kUnevenEmission = 1.5;
 
 void describe_emission(const Hierarchy& h, Shooter& s) {
     s.emission.clear();
